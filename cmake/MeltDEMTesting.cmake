@@ -1,0 +1,25 @@
+# Every validation writes "name | measured | reference | tolerance | verdict" rows into
+# MELTDEM_REPORT_DIR; scripts/run-tests.sh prints them as one table after ctest.
+set(MELTDEM_REPORT_DIR "${CMAKE_BINARY_DIR}/validation-report")
+file(MAKE_DIRECTORY "${MELTDEM_REPORT_DIR}")
+
+function(meltdem_test_environment test)
+  set_property(TEST ${test} APPEND PROPERTY ENVIRONMENT
+    "MELTDEM_REPORT_DIR=${MELTDEM_REPORT_DIR}"
+    "MELTDEM_BIN=${CMAKE_BINARY_DIR}/bin"
+    "MELTDEM_SOURCE_DIR=${CMAKE_SOURCE_DIR}"
+    "WM_PROJECT_DIR=${MELTDEM_FOAM_PROJECT_DIR}"
+    "OMPI_ALLOW_RUN_AS_ROOT=1" "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1"
+    "OMPI_MCA_rmaps_base_oversubscribe=1")
+endfunction()
+
+# meltdem_add_script_test(NAME n LABELS l... COMMAND cmd args...)
+function(meltdem_add_script_test)
+  cmake_parse_arguments(ARG "" "NAME;TIMEOUT" "LABELS;COMMAND" ${ARGN})
+  add_test(NAME ${ARG_NAME} COMMAND ${ARG_COMMAND})
+  meltdem_test_environment(${ARG_NAME})
+  set_property(TEST ${ARG_NAME} PROPERTY LABELS ${ARG_LABELS})
+  if(ARG_TIMEOUT)
+    set_property(TEST ${ARG_NAME} PROPERTY TIMEOUT ${ARG_TIMEOUT})
+  endif()
+endfunction()
