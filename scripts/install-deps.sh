@@ -29,7 +29,7 @@ PACKAGES=(
   "lammps=$LAMMPS_BIN_VERSION" "liblammps-dev=$LAMMPS_BIN_VERSION"
   "openfoam=$OPENFOAM_BIN_VERSION" "libopenfoam=$OPENFOAM_BIN_VERSION"
   openmpi-bin libopenmpi-dev libeigen3-dev googletest libgtest-dev
-  cmake g++ make dpkg-dev xz-utils bzip2 python3 python3-numpy python3-matplotlib
+  cmake g++ make dpkg-dev xz-utils bzip2 python3 python3-numpy python3-scipy python3-matplotlib
 )
 
 # OpenFOAM library folders whose lnInclude the project compiles against

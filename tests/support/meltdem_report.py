@@ -1,0 +1,36 @@
+"""Python side of the validation report (see validation_report.h / report.sh).
+
+    from meltdem_report import check_relative, check_absolute, report
+    ok = check_relative("dem.restitution", "e (prescribed 0.5)", measured, 0.5, 0.01)
+
+Each call prints 'VALIDATION test | what | measured | reference | tolerance | verdict'
+and appends the row to $MELTDEM_REPORT_DIR/<test>.tsv; it returns True when it passes.
+"""
+import os
+
+
+def report(test, what, measured, reference, tolerance, ok):
+    verdict = "PASS" if ok else "FAIL"
+    fmt = lambda v: f"{v:.10g}" if isinstance(v, float) else str(v)
+    print(f"VALIDATION {test} | {what} | measured {fmt(measured)} | reference {fmt(reference)}"
+          f" | tolerance {tolerance} | {verdict}", flush=True)
+    d = os.environ.get("MELTDEM_REPORT_DIR")
+    if d:
+        with open(os.path.join(d, test + ".tsv"), "a") as f:
+            f.write(f"{test}\t{what}\t{fmt(measured)}\t{fmt(reference)}\t{tolerance}\t{verdict}\n")
+    return ok
+
+
+def check_relative(test, what, measured, reference, tol):
+    ok = abs(measured - reference) <= tol * abs(reference)
+    return report(test, what, float(measured), float(reference), f"{tol:g} relative", ok)
+
+
+def check_absolute(test, what, measured, reference, tol):
+    ok = abs(measured - reference) <= tol
+    return report(test, what, float(measured), float(reference), f"{tol:g} absolute", ok)
+
+
+def check_at_most(test, what, measured, bound):
+    ok = measured <= bound
+    return report(test, what, float(measured), f"<= {bound:g}", "bound", ok)
