@@ -1,0 +1,79 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   MeltDEM: fix powder/insert -- overlap-free powder insertion with a pending
+   queue (thesis 3.2.2). Size distributions and the random stream live in coupling/.
+------------------------------------------------------------------------- */
+
+#ifdef FIX_CLASS
+// clang-format off
+// no trailing semicolon: meltdem_styles.cpp expands this inside an array initializer
+FixStyle(powder/insert,FixPowderInsert)
+// clang-format on
+#else
+
+#ifndef MELTDEM_FIX_POWDER_INSERT_H
+#define MELTDEM_FIX_POWDER_INSERT_H
+
+#include "fix.h"
+
+#include "meltdem/coupling/size_distribution.h"
+
+#include <deque>
+#include <vector>
+
+namespace LAMMPS_NS {
+
+class FixPowderInsert : public Fix {
+ public:
+  FixPowderInsert(class LAMMPS *, int, char **);
+  ~FixPowderInsert() override;
+  int setmask() override;
+  void init() override;
+  void setup_pre_exchange() override;
+  void pre_exchange() override;
+  void end_of_step() override;
+  double compute_vector(int) override;
+  void write_restart(FILE *) override;
+  void restart(char *) override;
+
+ private:
+  bigint ninsert;      // N requested
+  int ntype;           // atom type of the new particles
+  int iregion;
+  char *idregion;
+  double density;
+  int ratemode;        // ALL, RATE (particles/time) or MASSRATE (mass/time)
+  double rate;
+  double vnew[3];
+  int tempflag;
+  double temp;
+  int maxattempt;
+  double gap;
+  int insert_every;          // insertion tried at most every insert_every steps
+
+  meltdem::coupling::SizeDistribution dist;
+  meltdem::coupling::Rng64 rng_size;   // draws diameters only: same sequence on any #procs
+  meltdem::coupling::Rng64 rng_pos;    // draws positions
+
+  // state (saved in restart files)
+  std::deque<double> pending;  // diameters drawn and due, not yet placed (FIFO)
+  bigint ndrawn;               // diameters drawn so far (= inserted + pending)
+  bigint ninserted;
+  bigint nfailed;              // rejected trial positions
+  double mass_inserted;
+  double credit;               // accumulated rate*dt (particles or mass) not yet drawn
+  double lookahead;            // massrate: next diameter, drawn but not yet due (0: none)
+  bigint last_insert_step;
+
+  class FixPowderMelt *fixmelt;
+
+  double particle_mass(double d) const;
+  void draw_due();
+  void schedule();
+  int region_fits(double *, double);
+  int wall_overlap(double *, double);
+};
+
+}    // namespace LAMMPS_NS
+
+#endif
+#endif

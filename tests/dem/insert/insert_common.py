@@ -1,0 +1,105 @@
+"""Helpers of the fix powder/insert tests: scenes, running meltdem-lmp, reading dumps/thermo."""
+import os
+import subprocess
+import sys
+import tempfile
+
+import numpy as np
+
+sys.path.insert(0, os.path.join(os.environ["MELTDEM_SOURCE_DIR"], "tests", "support"))
+from meltdem_report import check_absolute, check_at_most, check_relative, report  # noqa: E402,F401
+
+LMP = os.path.join(os.environ["MELTDEM_BIN"], "meltdem-lmp")
+
+# 1 mm soft spheres (E = 5 MPa keeps the step at 1e-5 s) in a 10 x 10 x 45 mm box closed by
+# fix wall/gran planes on all sides; the insertion region is the 10 mm cube 30..40 mm up,
+# so 2000 particles (about 1.1x the region's volume) cannot all fit at once: pending occurs
+# and drains as the earlier particles fall out of the region. With 2 ranks the box is cut
+# in x, through the insertion region, so the overlap search spans ranks.
+GRAN = "hertz/material 5e6 0.5 0.3 damping tsuji tangential linear_nohistory 1.0 0.5"
+SETUP = f"""units si
+atom_style sphere
+atom_modify map array
+boundary f f f
+processors * 1 1
+region box block 0 0.01 0 0.01 0 0.045
+create_box 1 box
+comm_modify vel yes
+neighbor 0.3e-3 bin
+neigh_modify delay 0 every 1 check yes
+"""
+PHYSICS = f"""pair_style granular 1.2e-3
+pair_coeff * * {GRAN}
+fix wz all wall/gran granular {GRAN} zplane 0.0 0.045
+fix wx all wall/gran granular {GRAN} xplane 0.0 0.01
+fix wy all wall/gran granular {GRAN} yplane 0.0 0.01
+region ins block 0 0.01 0 0.01 0.030 0.040
+fix g all gravity 9.81 vector 0 0 -1
+fix nve all nve/sphere
+timestep 1e-5
+"""
+INSERT = ("fix ins all powder/insert 2000 12345 region ins diam uniform 0.8e-3 1.2e-3 dens 2500 "
+          "vel 0 0 -1 attempts 50 every 20")
+OUTPUT = """thermo_style custom step atoms f_ins[1] f_ins[2] f_ins[3] f_ins[4] f_ins[5] f_ins[6]
+thermo_modify norm no format float %.17g
+thermo 20
+dump d all custom 20 dump.ins id radius x y z
+dump_modify d sort id format float %.17g
+"""
+TIGHT = SETUP + PHYSICS + INSERT + "\n" + OUTPUT
+
+
+def run(text, np=1, check=True, cwd=None, timeout=300):
+    """Run an input in cwd (or a scratch folder); returns (returncode, stdout+stderr)."""
+    with tempfile.TemporaryDirectory() as scratch:
+        d = cwd or scratch
+        path = os.path.join(d, "in.test")
+        with open(path, "w") as f:
+            f.write(text)
+        cmd = [LMP, "-in", path, "-log", "none", "-echo", "none"]
+        if np > 1:
+            cmd = ["mpirun", "-np", str(np)] + cmd
+        p = subprocess.run(cmd, cwd=d, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                           text=True, timeout=timeout)
+    if check and p.returncode != 0:
+        print(p.stdout[-4000:])
+        raise SystemExit(f"meltdem-lmp failed with exit code {p.returncode}")
+    return p.returncode, p.stdout
+
+
+def thermo(out, first="Step"):
+    """All thermo rows (lists of floats) of every run in the output."""
+    rows, on = [], False
+    for line in out.splitlines():
+        w = line.split()
+        if w and w[0] == first:
+            on = True
+            continue
+        if on:
+            try:
+                rows.append([float(v) for v in w])
+            except ValueError:
+                on = False
+            if not w:
+                on = False
+    return np.array(rows)
+
+
+def read_dump(path):
+    """{step: array of rows (id radius x y z)} from a dump custom file."""
+    frames = {}
+    with open(path) as f:
+        lines = f.read().splitlines()
+    i = 0
+    while i < len(lines):
+        if lines[i].startswith("ITEM: TIMESTEP"):
+            step = int(lines[i + 1])
+            n = int(lines[i + 3])
+            data = np.array([[float(v) for v in l.split()] for l in lines[i + 9:i + 9 + n]])
+            if n == 0:
+                data = np.zeros((0, 5))
+            frames[step] = data
+            i += 9 + n
+        else:
+            i += 1
+    return frames

@@ -1,0 +1,54 @@
+#!/usr/bin/python3
+"""fix powder/insert rate / massrate with a timestep that changes between runs: the number
+(mass) of particles drawn follows rate * elapsed time to within one particle at every output,
+and everything drawn is placed (roomy region)."""
+import sys
+
+import numpy as np
+
+from insert_common import check_absolute, check_at_most, run, thermo
+
+TEST = "dem.insert.rate_timestep"
+HEAD = """units si
+atom_style sphere
+boundary p p p
+region box block 0 0.05 0 0.05 0 0.05
+create_box 1 box
+region ins block 0.002 0.048 0.002 0.048 0.002 0.048
+fix nve all nve/sphere
+"""
+RUNS = """thermo_style custom step time f_ins[1] f_ins[2] f_ins[3] f_ins[4] f_ins[5] f_ins[6]
+thermo_modify norm no format float %.17g
+thermo 25
+timestep 1e-6
+run 500
+timestep 2.5e-6
+run 400
+timestep 0.7e-6
+run 300
+"""
+RATE = 1.0e5                   # particles per second
+MASSRATE = 0.2                 # kg per second
+DMAX, RHO = 1.2e-3, 2500.0
+MMAX = RHO * np.pi / 6 * DMAX**3
+
+ok = True
+_, out = run(HEAD + f"fix ins all powder/insert 100000 7 region ins diam uniform 0.8e-3 1.2e-3 dens {RHO} "
+             f"rate {RATE}\n" + RUNS)
+t = thermo(out)
+time, ins, pend, drawn = t[:, 1], t[:, 2], t[:, 3], t[:, 7]
+ok &= check_absolute(TEST, f"drawn at t = {time[-1]:.4g} s vs rate*t (rate {RATE:g}/s)", drawn[-1], RATE * time[-1], 1.0)
+ok &= check_at_most(TEST, "max (rate*t - drawn) over all outputs, particles (0 <= . < 1)",
+                    np.max(RATE * time - drawn), 1.0 - 1e-9)
+ok &= check_at_most(TEST, "max (drawn - rate*t) over all outputs, particles", np.max(drawn - RATE * time), 1e-6)
+ok &= check_at_most(TEST, "max pending over all outputs (roomy region, rate-limited)", np.max(pend), 2)
+
+_, out = run(HEAD + f"fix ins all powder/insert 100000 7 region ins diam uniform 0.8e-3 1.2e-3 dens {RHO} "
+             f"massrate {MASSRATE}\n" + RUNS)
+t = thermo(out)
+time, mins, mpend = t[:, 1], t[:, 5], t[:, 6]
+due = MASSRATE * time
+ok &= check_absolute(TEST, f"mass drawn at t = {time[-1]:.4g} s vs massrate*t, kg", mins[-1] + mpend[-1], due[-1], MMAX)
+ok &= check_at_most(TEST, "max |massrate*t - mass drawn| over all outputs / largest particle mass",
+                    np.max(np.abs(due - mins - mpend)) / MMAX, 1.0)
+sys.exit(0 if ok else 1)
