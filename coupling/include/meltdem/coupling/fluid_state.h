@@ -1,0 +1,40 @@
+#pragma once
+// The fluid a particle sees: what fix powder/melt needs from the continuum (or from a
+// uniform 'ambient'). The physics asks a provider once per particle and step, so the
+// coupling can hand in interpolated local fields without touching the physics.
+
+namespace meltdem::coupling {
+
+struct FluidState {
+  double T = 0.0;               // temperature [K]
+  double k = 0.0;               // thermal conductivity [W/(m K)]
+  double rho = 0.0;             // density [kg/m^3]
+  double mu = 0.0;              // dynamic viscosity [Pa s]
+  double cp = 0.0;              // specific heat capacity [J/(kg K)]
+  double U[3] = {0.0, 0.0, 0.0};  // velocity [m/s]
+};
+
+class FluidStateProvider {
+ public:
+  virtual ~FluidStateProvider() = default;
+  // Fluid at particle 'index' (the caller's local index) located at x. Returns false where
+  // the particle sees no fluid (then it exchanges nothing this step).
+  virtual bool fluid_state(int index, const double x[3], FluidState &out) const = 0;
+};
+
+// The same fluid everywhere (fix powder/melt 'ambient').
+class UniformFluid : public FluidStateProvider {
+ public:
+  explicit UniformFluid(const FluidState &s) : state_(s) {}
+  bool fluid_state(int, const double *, FluidState &out) const override
+  {
+    out = state_;
+    return true;
+  }
+  const FluidState &state() const { return state_; }
+
+ private:
+  FluidState state_;
+};
+
+}  // namespace meltdem::coupling

@@ -1,0 +1,25 @@
+#pragma once
+// Fluid forces on one particle (thesis eq. 2.14 with the fluid viscosity kept):
+//   drag      F_d = beta (U_f - U_p), beta = 3 pi mu_f d (Cd Re / 24)  (drag.h)
+//   buoyancy  F_b = -rho_f V_p g = -(rho_f / rho_p) m_p g  (gravity itself is fix gravity's)
+
+#include "meltdem/coupling/drag.h"
+#include "meltdem/coupling/fluid_state.h"
+
+namespace meltdem::coupling {
+
+struct ParticleForces {
+  double drag[3] = {0.0, 0.0, 0.0};      // [N]
+  double buoyancy[3] = {0.0, 0.0, 0.0};  // [N]
+  double Re = 0.0;                       // slip Reynolds number
+  double beta = 0.0;                     // drag coefficient [kg/s] of F_d = beta (U_f - U_p)
+};
+
+// slip Reynolds number rho_f |U_f - v| d / mu_f
+double slip_reynolds(const FluidState &fluid, const double v[3], double d);
+
+// v: particle velocity, d: diameter, g: gravitational acceleration vector (zero: none)
+ParticleForces drag_and_buoyancy(DragModel model, const FluidState &fluid, const double v[3],
+                                 double d, const double g[3]);
+
+}  // namespace meltdem::coupling

@@ -1,0 +1,52 @@
+#pragma once
+// Heating and melting of one particle over one time step (thesis eq. 2.3, 2.9, 2.13).
+//
+// State: specific enthalpy h [J/kg], mass m, diameter d. Below melting T = h / cp; once
+// h reaches cp Tm the particle stays at Tm and every joule of heat melts mass, which is
+// handed to the continuum with the enthalpy cp Tm + L per kilogram (eq. 2.9). The solid
+// remainder keeps its density, so it shrinks.
+//
+// The fluid state and Nu are frozen over the step; within it the ODEs are integrated
+// exactly, so the result does not depend on the step size:
+//  - sensible: m cp dT/dt = G (Tf - T), G = h_conv A = k Nu pi d -> exponential relaxation;
+//  - melting:  L dm/dt = -G (Tf - Tm) with G ~ d -> d^2 falls linearly in time (d^2 law),
+//    i.e. eq. 2.3's m_melt = min(m_p, Q dt / L) with Q integrated over the shrinking step.
+// Bookkeeping is exact by construction: m_old h_old + heat = m_new h_new + enthalpy_out.
+
+#include "meltdem/coupling/fluid_state.h"
+
+namespace meltdem::coupling {
+
+struct MeltMaterial {
+  double cp = 0.0;      // specific heat capacity of the solid [J/(kg K)]
+  double Tmelt = 0.0;   // melting temperature [K]
+  double latent = 0.0;  // latent heat of melting [J/kg]
+};
+
+// throws std::invalid_argument unless cp, Tmelt, latent > 0
+void check_material(const MeltMaterial &mat);
+
+// T = min(h, cp Tm) / cp
+double particle_temperature(const MeltMaterial &mat, double h);
+
+// h = cp T; throws unless 0 <= T <= Tm (a solid particle above Tm does not exist here)
+double specific_enthalpy(const MeltMaterial &mat, double T);
+
+// k_f Nu of Ranz-Marshall (eq. 2.13), Nu = 2 + 0.6 Re^1/2 Pr^1/3, Pr = cp_f mu_f / k_f
+double ranz_marshall_k_nu(const FluidState &fluid, double Re);
+
+struct MeltStepResult {
+  double h = 0.0;             // specific enthalpy at the end of the step [J/kg]
+  double m = 0.0;             // mass at the end of the step [kg] (0 when fully molten)
+  double d = 0.0;             // diameter at the end of the step [m] (0 when fully molten)
+  double heat = 0.0;          // heat absorbed over the step [J] (negative when cooling)
+  double mass_melted = 0.0;   // m_old - m_new [kg], handed to the continuum (eq. 2.3)
+  double enthalpy_out = 0.0;  // mass_melted (cp Tm + L) [J] (eq. 2.9)
+  bool fully_molten = false;
+};
+
+// One step of length dt with k_nu = k_f Nu [W/(m K)] and fluid temperature T_fluid.
+MeltStepResult heat_melt_step(const MeltMaterial &mat, double h, double m, double d, double k_nu,
+                              double T_fluid, double dt);
+
+}  // namespace meltdem::coupling

@@ -1,0 +1,93 @@
+#include "meltdem/coupling/particle_melting.h"
+
+#include "meltdem/coupling/heat_transfer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace meltdem::coupling {
+
+void check_material(const MeltMaterial &mat)
+{
+  if (!(mat.cp > 0.0)) throw std::invalid_argument("melting needs cp > 0");
+  if (!(mat.Tmelt > 0.0)) throw std::invalid_argument("melting needs Tmelt > 0");
+  if (!(mat.latent > 0.0)) throw std::invalid_argument("melting needs latent heat > 0");
+}
+
+double particle_temperature(const MeltMaterial &mat, double h)
+{
+  return std::min(h, mat.cp * mat.Tmelt) / mat.cp;
+}
+
+double specific_enthalpy(const MeltMaterial &mat, double T)
+{
+  if (!(T >= 0.0) || !(T <= mat.Tmelt))
+    throw std::invalid_argument("particle temperature must lie in [0, Tmelt]");
+  return mat.cp * T;
+}
+
+double ranz_marshall_k_nu(const FluidState &fluid, double Re)
+{
+  return fluid.k * ranz_marshall_nusselt(Re, prandtl_number(fluid.cp, fluid.mu, fluid.k));
+}
+
+MeltStepResult heat_melt_step(const MeltMaterial &mat, double h, double m, double d, double k_nu,
+                              double T_fluid, double dt)
+{
+  check_material(mat);
+  if (!(m > 0.0) || !(d > 0.0)) throw std::invalid_argument("heat_melt_step needs m > 0, d > 0");
+  if (!(k_nu >= 0.0) || !(dt >= 0.0)) throw std::invalid_argument("heat_melt_step needs k Nu >= 0, dt >= 0");
+
+  const double hm = mat.cp * mat.Tmelt;
+  MeltStepResult r;
+  r.h = std::min(h, hm);
+  r.m = m;
+  r.d = d;
+  if (k_nu == 0.0 || dt == 0.0) return r;
+
+  const double G = k_nu * M_PI * d;  // h_conv A [W/K]
+  const bool melts = T_fluid > mat.Tmelt;
+  double t_left = dt;
+
+  if (!(r.h >= hm && melts)) {
+    // sensible stage: T(t) = Tf + (T - Tf) exp(-t/tau), until T reaches Tm (if Tf > Tm)
+    const double T = r.h / mat.cp;
+    const double tau = m * mat.cp / G;
+    double h_new;
+    if (melts && tau * std::log((T_fluid - T) / (T_fluid - mat.Tmelt)) < dt) {
+      t_left = dt - tau * std::log((T_fluid - T) / (T_fluid - mat.Tmelt));
+      h_new = hm;
+    } else {
+      t_left = 0.0;
+      // expm1 keeps the tiny increments of small dt / tau accurate
+      h_new = std::min(mat.cp * (T - (T_fluid - T) * std::expm1(-dt / tau)), hm);
+    }
+    r.heat = m * (h_new - r.h);  // exactly the enthalpy change
+    r.h = h_new;
+  }
+
+  if (t_left > 0.0 && r.h >= hm && melts) {
+    // melting stage at T = Tm: d(d^2)/dt = -4 k Nu (Tf - Tm) / (rho L)
+    const double rho = m / (M_PI / 6.0 * d * d * d);
+    const double d2 = d * d - 4.0 * k_nu * (T_fluid - mat.Tmelt) * t_left / (rho * mat.latent);
+    double m_new = 0.0;
+    if (d2 > 0.0) {
+      r.d = std::sqrt(d2);
+      const double ratio = r.d / d;
+      m_new = m * ratio * ratio * ratio;  // constant density
+    }
+    if (!(m_new > 0.0)) {
+      m_new = 0.0;
+      r.d = 0.0;
+      r.fully_molten = true;
+    }
+    r.mass_melted = m - m_new;
+    r.m = m_new;
+    r.heat += r.mass_melted * mat.latent;
+    r.enthalpy_out = r.mass_melted * (hm + mat.latent);
+  }
+  return r;
+}
+
+}  // namespace meltdem::coupling

@@ -1,0 +1,132 @@
+// Heating and melting of one particle (thesis eq. 2.3, 2.9, 2.13): exact integration over a
+// step, exact bookkeeping, the thesis 2.3 particle.
+#include "meltdem/coupling/exact_sum.h"
+#include "meltdem/coupling/particle_melting.h"
+#include "validation_report.h"
+
+#include <cmath>
+#include <stdexcept>
+
+using namespace meltdem::coupling;
+using meltdem::testing::expect_absolute;
+using meltdem::testing::expect_relative;
+
+namespace {
+// thesis table 2.3 particle, table 2.2 gas (Nu = 2: particle at rest in the gas)
+const MeltMaterial steel{48.35, 1000.0, 0.248611 / 9.069e-7};
+const double d0 = 600e-6, rho = 8020.0, m0 = M_PI / 6.0 * rho * d0 * d0 * d0;
+const double k_gas = 100.0, T_gas = 1500.0, k_nu = 2.0 * k_gas;
+const double tau = rho * steel.cp * d0 * d0 / (6.0 * 2.0 * k_gas);  // m cp / (h A)
+}  // namespace
+
+TEST(ParticleMelting, HeatingAtRestIsExactForAnyStep)
+{
+  // below melting (Tm huge): T(t) = Tf + (T0 - Tf) exp(-t/tau), one step or a thousand
+  const MeltMaterial hot{48.35, 1e9, 2.7e5};
+  const double t_end = 1.5 * tau, T0 = 300.0;
+  for (int nsteps : {1, 7, 1000}) {
+    double h = hot.cp * T0, heat = 0.0;
+    for (int s = 0; s < nsteps; ++s) {
+      const auto r = heat_melt_step(hot, h, m0, d0, k_nu, T_gas, t_end / nsteps);
+      heat += r.heat;
+      h = r.h;
+      EXPECT_EQ(r.m, m0);
+    }
+    const double T_ref = T_gas + (T0 - T_gas) * std::exp(-t_end / tau);
+    expect_relative("T(1.5 tau), " + std::to_string(nsteps) + " steps", particle_temperature(hot, h), T_ref, 1e-12);
+    expect_relative("heat absorbed = m cp dT, " + std::to_string(nsteps) + " steps", heat,
+                    m0 * hot.cp * (T_ref - T0), 1e-11);
+  }
+}
+
+TEST(ParticleMelting, CoolingRelaxesTowardsFluid)
+{
+  const double T0 = 900.0, Tf = 400.0, dt = 0.3 * tau;
+  const auto r = heat_melt_step(steel, steel.cp * T0, m0, d0, k_nu, Tf, dt);
+  expect_relative("cooling T(0.3 tau)", particle_temperature(steel, r.h), Tf + (T0 - Tf) * std::exp(-0.3), 1e-13);
+  EXPECT_LT(r.heat, 0.0);
+  EXPECT_EQ(r.mass_melted, 0.0);
+  EXPECT_EQ(r.m, m0);
+}
+
+TEST(ParticleMelting, Thesis23ParticleBooksEverything)
+{
+  // the thesis 2.3 particle heats from 0 K and melts completely; every step conserves
+  // m h + handed-over enthalpy, and the totals match m cp Tm + m L
+  const double dt = 1e-6;
+  double h = 0.0, m = m0, d = d0;
+  ExactSum heat, mass, enthalpy;
+  double worst_step = 0.0;
+  int steps = 0;
+  bool molten = false;
+  while (!molten && steps < 100000) {
+    const auto r = heat_melt_step(steel, h, m, d, k_nu, T_gas, dt);
+    const double before = m * h + r.heat, after = r.m * r.h + r.enthalpy_out;
+    worst_step = std::max(worst_step, std::abs(after - before) / (m0 * (steel.cp * steel.Tmelt + steel.latent)));
+    heat.add(r.heat);
+    mass.add_difference(m, r.m);
+    enthalpy.add(r.enthalpy_out);
+    h = r.h;
+    m = r.m;
+    d = r.d;
+    molten = r.fully_molten;
+    ++steps;
+  }
+  ASSERT_TRUE(molten);
+  EXPECT_EQ(m, 0.0);
+  expect_absolute("worst per-step energy balance / (m (cp Tm + L))", worst_step, 0.0, 1e-15);
+  expect_relative("heat absorbed vs m cp Tm + m L", heat.value(), m0 * (steel.cp * steel.Tmelt + steel.latent), 1e-12);
+  expect_relative("mass handed over vs m0", mass.value(), m0, 1e-16);
+  expect_relative("enthalpy handed over vs m (cp Tm + L)", enthalpy.value(),
+                  m0 * (steel.cp * steel.Tmelt + steel.latent), 1e-13);
+  expect_relative("latent heat = E_latent / m (thesis 0.248611 J / 9.069e-7 kg)", m0 * steel.latent,
+                  0.248611 * m0 / 9.069e-7, 1e-15);
+  // time to melt: t* = tau ln((Tf - T0)/(Tf - Tm)), then the d^2 law d0^2 rho L / (4 k Nu (Tf - Tm))
+  const double t_melt = tau * std::log(T_gas / (T_gas - steel.Tmelt)) +
+                        d0 * d0 * rho * steel.latent / (4.0 * k_nu * (T_gas - steel.Tmelt));
+  expect_absolute("melt time [s] (resolved to dt)", steps * dt, t_melt, dt);
+}
+
+TEST(ParticleMelting, MeltingFollowsD2LawForAnyStep)
+{
+  const double t_star = tau * std::log(T_gas / (T_gas - steel.Tmelt));
+  const double t1 = t_star + 1e-3;
+  const double d_ref = std::sqrt(d0 * d0 - 4.0 * k_nu * (T_gas - steel.Tmelt) * 1e-3 / (rho * steel.latent));
+  for (int nsteps : {1, 3, 1000}) {
+    double h = 0.0, m = m0, d = d0;
+    for (int s = 0; s < nsteps; ++s) {
+      const auto r = heat_melt_step(steel, h, m, d, k_nu, T_gas, t1 / nsteps);
+      h = r.h, m = r.m, d = r.d;
+    }
+    expect_relative("d(t* + 1 ms), " + std::to_string(nsteps) + " steps", d, d_ref, 1e-12);
+    expect_relative("density kept, " + std::to_string(nsteps) + " steps", m / (M_PI / 6.0 * d * d * d), rho, 1e-12);
+  }
+}
+
+TEST(ParticleMelting, ExactSumTelescopes)
+{
+  ExactSum s, naive_check;
+  double m = 1.0, naive = 0.0;
+  for (int i = 0; i < 100000; ++i) {
+    const double m_new = m * (1.0 - 1.0 / 3.0e4);
+    s.add_difference(m, m_new);
+    naive += m - m_new;
+    m = m_new;
+  }
+  expect_relative("exact sum of differences = 1 - m_final", s.value(), 1.0 - m, 1e-16);
+  EXPECT_NE(naive, 1.0 - m);  // the plain sum drifts: why the ledger uses ExactSum
+}
+
+TEST(ParticleMelting, BadInput)
+{
+  EXPECT_THROW(check_material({0.0, 1000.0, 1.0}), std::invalid_argument);
+  EXPECT_THROW(check_material({1.0, -1.0, 1.0}), std::invalid_argument);
+  EXPECT_THROW(check_material({1.0, 1000.0, 0.0}), std::invalid_argument);
+  EXPECT_THROW(specific_enthalpy(steel, 1001.0), std::invalid_argument);
+  EXPECT_THROW(specific_enthalpy(steel, -1.0), std::invalid_argument);
+  EXPECT_THROW(heat_melt_step(steel, 0.0, 0.0, d0, k_nu, T_gas, 1e-6), std::invalid_argument);
+  EXPECT_THROW(heat_melt_step(steel, 0.0, m0, d0, k_nu, T_gas, -1e-6), std::invalid_argument);
+  FluidState f;
+  f.k = 100.0, f.cp = 5210.928, f.mu = 2.1e-5, f.rho = 1.6115;
+  expect_relative("k Nu at Re = 0 (Nu = 2)", ranz_marshall_k_nu(f, 0.0), 200.0, 1e-15);
+}

@@ -1,0 +1,531 @@
+/* ----------------------------------------------------------------------
+   MeltDEM: fix powder/melt -- heating, drag, buoyancy and melting of particles.
+   The per-particle physics (one heat/melt step, drag and buoyancy) is in
+   coupling/ (particle_melting.h, particle_forces.h); this fix owns the per-atom
+   state, the ledger of what is handed to the continuum and the deletion of molten
+   particles.
+------------------------------------------------------------------------- */
+
+#include "fix_powder_melt.h"
+
+#include "atom.h"
+#include "atom_vec.h"
+#include "comm.h"
+#include "domain.h"
+#include "error.h"
+#include "memory.h"
+#include "modify.h"
+#include "update.h"
+#include "utils.h"
+
+#include "meltdem/coupling/particle_forces.h"
+
+#include <cmath>
+#include <cstring>
+#include <stdexcept>
+
+using namespace LAMMPS_NS;
+using namespace FixConst;
+namespace mc = meltdem::coupling;
+
+/* ---------------------------------------------------------------------- */
+
+FixPowderMelt::FixPowderMelt(LAMMPS *lmp, int narg, char **arg) :
+    Fix(lmp, narg, arg), drag_model(mc::DragModel::Thesis), T0(0.0), ambient_flag(0),
+    provider(nullptr), melt(nullptr), exchange(nullptr), nmax_exchange(0), vector_dirty(1),
+    warned_drag(0)
+{
+  if (strcmp(update->unit_style, "si") != 0)
+    error->all(FLERR, "Fix powder/melt requires units si (its heat and drag laws use SI values)");
+  if (domain->dimension != 3) error->all(FLERR, "Fix powder/melt requires a 3d simulation");
+
+  // radius and mass change as particles melt: ghosts must receive them every step,
+  // which atom_style sphere does only with its dynamic-radius flag (atom_style sphere 1)
+  bool radvary = false;
+  if (atom->sphere_flag && atom->radius_flag && atom->rmass_flag && atom->avec->fields_comm) {
+    auto words = utils::split_words(atom->avec->fields_comm);
+    bool r = false, m = false;
+    for (auto &w : words) {
+      if (w == "radius") r = true;
+      if (w == "rmass") m = true;
+    }
+    radvary = r && m;
+  }
+  if (!radvary)
+    error->all(FLERR, "Fix powder/melt requires atom_style sphere 1 (particle radius and mass "
+                      "change as they melt; atom_style {} does not communicate them)",
+               atom->atom_style);
+
+  int have_cp = 0, have_tm = 0, have_l = 0, have_t0 = 0;
+  mc::FluidState amb;
+  int iarg = 3;
+  auto value = [&](const char *kw, int n) {
+    if (iarg + n >= narg)
+      error->all(FLERR, "Illegal fix powder/melt command: keyword {} needs {} value(s)", kw, n);
+  };
+  while (iarg < narg) {
+    if (strcmp(arg[iarg], "cp") == 0) {
+      value("cp", 1);
+      mat.cp = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+      have_cp = 1;
+      iarg += 2;
+    } else if (strcmp(arg[iarg], "Tmelt") == 0) {
+      value("Tmelt", 1);
+      mat.Tmelt = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+      have_tm = 1;
+      iarg += 2;
+    } else if (strcmp(arg[iarg], "latent") == 0) {
+      value("latent", 1);
+      mat.latent = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+      have_l = 1;
+      iarg += 2;
+    } else if (strcmp(arg[iarg], "temp") == 0) {
+      value("temp", 1);
+      T0 = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+      have_t0 = 1;
+      iarg += 2;
+    } else if (strcmp(arg[iarg], "ambient") == 0) {
+      for (int k = 1; k <= 8; k++)
+        if (iarg + k >= narg || !utils::is_double(arg[iarg + k]))
+          error->all(FLERR, "Illegal fix powder/melt command: ambient needs 8 values "
+                            "(TF KF RHOF MUF CPF UX UY UZ), value {} is {}",
+                     k, iarg + k >= narg ? "missing" : arg[iarg + k]);
+      amb.T = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+      amb.k = utils::numeric(FLERR, arg[iarg + 2], false, lmp);
+      amb.rho = utils::numeric(FLERR, arg[iarg + 3], false, lmp);
+      amb.mu = utils::numeric(FLERR, arg[iarg + 4], false, lmp);
+      amb.cp = utils::numeric(FLERR, arg[iarg + 5], false, lmp);
+      for (int k = 0; k < 3; k++) amb.U[k] = utils::numeric(FLERR, arg[iarg + 6 + k], false, lmp);
+      if (!(amb.T >= 0.0)) error->all(FLERR, "Fix powder/melt ambient temperature must be >= 0 K");
+      if (!(amb.k > 0.0)) error->all(FLERR, "Fix powder/melt ambient conductivity KF must be > 0");
+      if (!(amb.rho >= 0.0)) error->all(FLERR, "Fix powder/melt ambient density RHOF must be >= 0");
+      if (!(amb.mu > 0.0)) error->all(FLERR, "Fix powder/melt ambient viscosity MUF must be > 0");
+      if (!(amb.cp > 0.0)) error->all(FLERR, "Fix powder/melt ambient heat capacity CPF must be > 0");
+      ambient_flag = 1;
+      iarg += 9;
+    } else if (strcmp(arg[iarg], "drag") == 0) {
+      value("drag", 1);
+      if (strcmp(arg[iarg + 1], "thesis") == 0)
+        drag_model = mc::DragModel::Thesis;
+      else if (strcmp(arg[iarg + 1], "schiller-naumann") == 0)
+        drag_model = mc::DragModel::SchillerNaumann;
+      else
+        error->all(FLERR, "Fix powder/melt drag model {} unknown (use thesis or schiller-naumann)",
+                   arg[iarg + 1]);
+      iarg += 2;
+    } else
+      error->all(FLERR, "Illegal fix powder/melt command: unknown keyword {}", arg[iarg]);
+  }
+
+  if (!have_cp) error->all(FLERR, "Fix powder/melt requires keyword cp");
+  if (!have_tm) error->all(FLERR, "Fix powder/melt requires keyword Tmelt");
+  if (!have_l) error->all(FLERR, "Fix powder/melt requires keyword latent");
+  if (!(mat.cp > 0.0)) error->all(FLERR, "Fix powder/melt cp must be > 0");
+  if (!(mat.Tmelt > 0.0)) error->all(FLERR, "Fix powder/melt Tmelt must be > 0");
+  if (!(mat.latent > 0.0)) error->all(FLERR, "Fix powder/melt latent must be > 0");
+  if (have_t0 && (!(T0 >= 0.0) || !(T0 <= mat.Tmelt)))
+    error->all(FLERR, "Fix powder/melt temp {} outside [0, Tmelt = {}] (particles are solid)", T0,
+               mat.Tmelt);
+
+  if (ambient_flag) {
+    ambient = std::make_unique<mc::UniformFluid>(amb);
+    provider = ambient.get();
+  }
+
+  vector_flag = 1;
+  size_vector = 6;
+  global_freq = 1;
+  extvector = 1;
+  peratom_flag = 1;
+  size_peratom_cols = 2;
+  peratom_freq = 1;
+  restart_global = 1;
+  restart_peratom = 1;
+  create_attribute = 1;
+  force_reneighbor = 1;
+  next_reneighbor = -1;
+  for (double &v : vector_all) v = 0.0;
+
+  grow_arrays(atom->nmax);
+  atom->add_callback(Atom::GROW);
+  atom->add_callback(Atom::RESTART);
+  for (int i = 0; i < atom->nlocal; i++) set_arrays(i);
+}
+
+/* ---------------------------------------------------------------------- */
+
+FixPowderMelt::~FixPowderMelt()
+{
+  atom->delete_callback(id, Atom::GROW);
+  atom->delete_callback(id, Atom::RESTART);
+  memory->destroy(melt);
+  delete[] exchange;
+}
+
+/* ---------------------------------------------------------------------- */
+
+int FixPowderMelt::setmask()
+{
+  int mask = 0;
+  mask |= PRE_EXCHANGE;
+  mask |= POST_FORCE;
+  mask |= END_OF_STEP;
+  return mask;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixPowderMelt::init()
+{
+  if (utils::strmatch(update->integrate_style, "^respa"))
+    error->all(FLERR, "Fix powder/melt does not support run_style respa");
+
+  // buoyancy needs gravity; the values are read each step (fix gravity may vary them)
+  gravity_fixes.clear();
+  for (int i = 0; i < modify->nfix; i++)
+    if (utils::strmatch(modify->fix[i]->style, "^gravity")) gravity_fixes.push_back(i);
+
+  if (!provider && comm->me == 0)
+    error->warning(FLERR, "Fix powder/melt has no fluid (no ambient keyword, no coupling): "
+                          "particles are neither heated nor dragged");
+}
+
+/* ---------------------------------------------------------------------- */
+
+const double *FixPowderMelt::gravity(double *g) const
+{
+  g[0] = g[1] = g[2] = 0.0;
+  for (int ifix : gravity_fixes) {
+    int dim;
+    auto *gvec = (double *) modify->fix[ifix]->extract("gvec", dim);
+    if (gvec)
+      for (int k = 0; k < 3; k++) g[k] += gvec[k];
+  }
+  return g;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixPowderMelt::set_fluid_provider(const mc::FluidStateProvider *p)
+{
+  provider = p ? p : ambient.get();
+}
+
+/* ----------------------------------------------------------------------
+   particles that exist before the first run (or were created and resized by
+   'set' since): their initial mass is the mass they have now
+------------------------------------------------------------------------- */
+
+void FixPowderMelt::setup(int vflag)
+{
+  for (int i = 0; i < atom->nlocal; i++) {
+    if (melt[i][MASS0] <= 0.0) melt[i][MASS0] = atom->rmass[i];
+    refresh_output(i);
+  }
+  post_force(vflag);
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixPowderMelt::setup_pre_exchange()
+{
+  delete_molten();
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixPowderMelt::pre_exchange()
+{
+  if (next_reneighbor != update->ntimestep) return;
+  delete_molten();
+}
+
+/* ----------------------------------------------------------------------
+   remove fully molten particles (already booked in end_of_step) as fix evaporate
+   does; collective
+------------------------------------------------------------------------- */
+
+int FixPowderMelt::delete_molten()
+{
+  AtomVec *avec = atom->avec;
+  bigint ndel = 0;
+  for (int i = atom->nlocal - 1; i >= 0; i--)
+    if (melt[i][MOLTEN] != 0.0) {
+      avec->copy(atom->nlocal - 1, i, 1);
+      atom->nlocal--;
+      ndel++;
+    }
+  bigint ndel_all = 0;
+  MPI_Allreduce(&ndel, &ndel_all, 1, MPI_LMP_BIGINT, MPI_SUM, world);
+  if (ndel_all) {
+    atom->natoms -= ndel_all;
+    if (atom->map_style != Atom::MAP_NONE) {
+      atom->nghost = 0;
+      atom->map_init();
+      atom->map_set();
+    }
+  }
+  return (int) ndel_all;
+}
+
+/* ----------------------------------------------------------------------
+   drag and buoyancy (eq. 2.14); gravity itself is fix gravity's
+------------------------------------------------------------------------- */
+
+void FixPowderMelt::post_force(int /*vflag*/)
+{
+  const int nlocal = atom->nlocal;
+  if (nmax_exchange < atom->nmax) {
+    delete[] exchange;
+    nmax_exchange = atom->nmax;
+    exchange = new StepExchange[nmax_exchange];
+  }
+  for (int i = 0; i < nlocal; i++) exchange[i] = StepExchange();
+  if (!provider) return;
+
+  double **x = atom->x;
+  double **v = atom->v;
+  double **f = atom->f;
+  double *radius = atom->radius;
+  double *rmass = atom->rmass;
+  int *mask = atom->mask;
+  double g[3];
+  gravity(g);
+  const double dt = update->dt;
+
+  mc::FluidState fluid;
+  for (int i = 0; i < nlocal; i++) {
+    if (!(mask[i] & groupbit) || melt[i][MOLTEN] != 0.0) continue;
+    if (!provider->fluid_state(i, x[i], fluid)) continue;
+    mc::ParticleForces F;
+    try {
+      F = mc::drag_and_buoyancy(drag_model, fluid, v[i], 2.0 * radius[i], g);
+    } catch (std::invalid_argument &e) {
+      error->one(FLERR, "Fix powder/melt: atom {}: {}", atom->tag[i], e.what());
+    }
+    for (int k = 0; k < 3; k++) {
+      f[i][k] += F.drag[k] + F.buoyancy[k];
+      exchange[i].drag[k] = F.drag[k];
+    }
+    // explicit drag overshoots once dt exceeds the particle response time m / beta
+    if (!warned_drag && F.beta * dt > rmass[i]) {
+      warned_drag = 1;
+      error->warning(FLERR, "Fix powder/melt: time step {:.3g} s exceeds the drag response "
+                            "time {:.3g} s of atom {}; explicit drag is inaccurate or unstable",
+                     dt, rmass[i] / F.beta, atom->tag[i]);
+    }
+  }
+}
+
+/* ----------------------------------------------------------------------
+   heating and melting (eq. 2.3, 2.9, 2.13) with the full-step velocity; book what
+   is handed over (eq. 2.3, 2.9, 2.11) and schedule the deletion of molten particles
+------------------------------------------------------------------------- */
+
+void FixPowderMelt::end_of_step()
+{
+  const int nlocal = atom->nlocal;
+  double **x = atom->x;
+  double **v = atom->v;
+  double **f = atom->f;
+  double **omega = atom->omega;
+  double **torque = atom->torque;
+  double *radius = atom->radius;
+  double *rmass = atom->rmass;
+  int *mask = atom->mask;
+  const double dt = update->dt;
+
+  if (nmax_exchange < atom->nmax) {
+    delete[] exchange;
+    nmax_exchange = atom->nmax;
+    exchange = new StepExchange[nmax_exchange];
+  }
+
+  int nmolten = 0;
+  mc::FluidState fluid;
+  for (int i = 0; i < nlocal && provider; i++) {
+    if (!(mask[i] & groupbit) || melt[i][MOLTEN] != 0.0) continue;
+    if (melt[i][MASS0] <= 0.0) melt[i][MASS0] = rmass[i];  // inserted during the run
+    if (!provider->fluid_state(i, x[i], fluid)) continue;
+
+    const double d = 2.0 * radius[i], m = rmass[i];
+    mc::MeltStepResult r;
+    try {
+      const double Re = mc::slip_reynolds(fluid, v[i], d);
+      r = mc::heat_melt_step(mat, melt[i][HSPEC], m, d, mc::ranz_marshall_k_nu(fluid, Re), fluid.T, dt);
+    } catch (std::invalid_argument &e) {
+      error->one(FLERR, "Fix powder/melt: atom {}: {}", atom->tag[i], e.what());
+    }
+
+    StepExchange &ex = exchange[i];
+    ex.mass = r.mass_melted;
+    ex.enthalpy = r.enthalpy_out;
+    ex.heat = r.heat;
+    ledger[0].add_difference(m, r.m);  // exact: the totals telescope to the initial mass
+    ledger[1].add(r.enthalpy_out);
+    for (int k = 0; k < 3; k++) {
+      ex.momentum[k] = r.mass_melted * v[i][k];
+      ledger[2 + k].add(ex.momentum[k]);
+    }
+    ledger[5].add(r.heat);
+    melt[i][HSPEC] = r.h;
+
+    if (r.fully_molten) {
+      // keep mass and radius until the atom is deleted at the next pre_exchange (the
+      // integrator divides by them); it rests there, no force acts on it before
+      melt[i][MOLTEN] = 1.0;
+      for (int k = 0; k < 3; k++) v[i][k] = f[i][k] = omega[i][k] = torque[i][k] = 0.0;
+      nmolten++;
+    } else if (r.mass_melted > 0.0) {
+      rmass[i] = r.m;
+      radius[i] = 0.5 * r.d;
+    }
+    refresh_output(i);
+  }
+
+  int nmolten_all = 0;
+  MPI_Allreduce(&nmolten, &nmolten_all, 1, MPI_INT, MPI_SUM, world);
+  if (nmolten_all) next_reneighbor = update->ntimestep + 1;
+  vector_dirty = 1;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixPowderMelt::refresh_output(int i)
+{
+  melt[i][TEMP] = mc::particle_temperature(mat, melt[i][HSPEC]);
+  if (melt[i][MOLTEN] != 0.0)
+    melt[i][FRAC] = 1.0;
+  else
+    melt[i][FRAC] = melt[i][MASS0] > 0.0 ? 1.0 - atom->rmass[i] / melt[i][MASS0] : 0.0;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixPowderMelt::set_particle_temperature(int i, double T)
+{
+  if (i < 0 || i >= atom->nmax)
+    error->one(FLERR, "Fix powder/melt: set_particle_temperature for invalid local index {}", i);
+  if (!(T >= 0.0) || !(T <= mat.Tmelt))
+    error->one(FLERR, "Fix powder/melt: particle temperature {} outside [0, Tmelt = {}]", T, mat.Tmelt);
+  melt[i][HSPEC] = mc::specific_enthalpy(mat, T);
+  melt[i][TEMP] = T;
+}
+
+/* ----------------------------------------------------------------------
+   [1] molten mass, [2] enthalpy, [3..5] momentum handed over, [6] heat absorbed
+------------------------------------------------------------------------- */
+
+double FixPowderMelt::compute_vector(int n)
+{
+  if (vector_dirty) {
+    double local[12], all[12];
+    for (int k = 0; k < 6; k++) {
+      local[k] = ledger[k].hi();
+      local[6 + k] = ledger[k].lo();
+    }
+    MPI_Allreduce(local, all, 12, MPI_DOUBLE, MPI_SUM, world);
+    for (int k = 0; k < 6; k++) vector_all[k] = all[k] + all[6 + k];
+    vector_dirty = 0;
+  }
+  return vector_all[n];
+}
+
+/* ----------------------------------------------------------------------
+   the ledger survives restarts: totals over ranks go to rank 0 on reading
+------------------------------------------------------------------------- */
+
+void FixPowderMelt::write_restart(FILE *fp)
+{
+  double local[12], all[12];
+  for (int k = 0; k < 6; k++) {
+    local[k] = ledger[k].hi();
+    local[6 + k] = ledger[k].lo();
+  }
+  MPI_Allreduce(local, all, 12, MPI_DOUBLE, MPI_SUM, world);
+  if (comm->me == 0) {
+    int size = 12 * sizeof(double);
+    fwrite(&size, sizeof(int), 1, fp);
+    fwrite(all, sizeof(double), 12, fp);
+  }
+}
+
+void FixPowderMelt::restart(char *buf)
+{
+  auto *list = (double *) buf;
+  for (int k = 0; k < 6; k++) {
+    if (comm->me == 0)
+      ledger[k].set(list[k], list[6 + k]);
+    else
+      ledger[k].set(0.0, 0.0);
+  }
+  vector_dirty = 1;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixPowderMelt::grow_arrays(int nmax)
+{
+  memory->grow(melt, nmax, NCOL, "powder/melt:melt");
+  array_atom = melt;
+}
+
+void FixPowderMelt::copy_arrays(int i, int j, int /*delflag*/)
+{
+  for (int k = 0; k < NCOL; k++) melt[j][k] = melt[i][k];
+}
+
+// new atoms start at temp T0; the initial mass is taken at the first step, after the
+// creating command has set their size
+void FixPowderMelt::set_arrays(int i)
+{
+  melt[i][TEMP] = T0;
+  melt[i][FRAC] = 0.0;
+  melt[i][HSPEC] = mat.cp * T0;
+  melt[i][MASS0] = 0.0;
+  melt[i][MOLTEN] = 0.0;
+}
+
+int FixPowderMelt::pack_exchange(int i, double *buf)
+{
+  for (int k = 0; k < NCOL; k++) buf[k] = melt[i][k];
+  return NCOL;
+}
+
+int FixPowderMelt::unpack_exchange(int nlocal, double *buf)
+{
+  for (int k = 0; k < NCOL; k++) melt[nlocal][k] = buf[k];
+  return NCOL;
+}
+
+int FixPowderMelt::pack_restart(int i, double *buf)
+{
+  // buf[0] = count, as other fixes read it to skip this fix's values
+  buf[0] = NCOL + 1;
+  for (int k = 0; k < NCOL; k++) buf[k + 1] = melt[i][k];
+  return NCOL + 1;
+}
+
+void FixPowderMelt::unpack_restart(int nlocal, int nth)
+{
+  double **extra = atom->extra;
+  int m = 0;
+  for (int i = 0; i < nth; i++) m += static_cast<int>(extra[nlocal][m]);
+  m++;
+  for (int k = 0; k < NCOL; k++) melt[nlocal][k] = extra[nlocal][m++];
+}
+
+int FixPowderMelt::size_restart(int /*nlocal*/)
+{
+  return NCOL + 1;
+}
+
+int FixPowderMelt::maxsize_restart()
+{
+  return NCOL + 1;
+}
+
+double FixPowderMelt::memory_usage()
+{
+  return (double) atom->nmax * NCOL * sizeof(double) + (double) nmax_exchange * sizeof(StepExchange);
+}

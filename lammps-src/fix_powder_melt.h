@@ -1,0 +1,104 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   MeltDEM: fix powder/melt -- heating, drag, buoyancy and melting of particles
+   (thesis eq. 2.3, 2.9, 2.11, 2.13, 2.14). The physics lives in coupling/.
+------------------------------------------------------------------------- */
+
+#ifdef FIX_CLASS
+// clang-format off
+// no trailing semicolon: meltdem_styles.cpp expands this inside an array initializer
+FixStyle(powder/melt,FixPowderMelt)
+// clang-format on
+#else
+
+#ifndef MELTDEM_FIX_POWDER_MELT_H
+#define MELTDEM_FIX_POWDER_MELT_H
+
+#include "fix.h"
+
+#include "meltdem/coupling/drag.h"
+#include "meltdem/coupling/exact_sum.h"
+#include "meltdem/coupling/fluid_state.h"
+#include "meltdem/coupling/particle_melting.h"
+
+#include <memory>
+#include <vector>
+
+namespace LAMMPS_NS {
+
+class FixPowderMelt : public Fix {
+ public:
+  FixPowderMelt(class LAMMPS *, int, char **);
+  ~FixPowderMelt() override;
+  int setmask() override;
+  void init() override;
+  void setup(int) override;
+  void setup_pre_exchange() override;
+  void pre_exchange() override;
+  void post_force(int) override;
+  void end_of_step() override;
+
+  double compute_vector(int) override;
+  double memory_usage() override;
+  void write_restart(FILE *) override;
+  void restart(char *) override;
+
+  void grow_arrays(int) override;
+  void copy_arrays(int, int, int) override;
+  void set_arrays(int) override;
+  int pack_exchange(int, double *) override;
+  int unpack_exchange(int, double *) override;
+  int pack_restart(int, double *) override;
+  void unpack_restart(int, int) override;
+  int size_restart(int) override;
+  int maxsize_restart() override;
+
+  // called by fix powder/insert for its 'temp' keyword: 0 <= T <= Tmelt
+  void set_particle_temperature(int i, double T);
+
+  // The coupling replaces 'ambient' by the continuum's local fields through this hook
+  // (nullptr restores ambient). The provider must outlive its use by this fix.
+  void set_fluid_provider(const meltdem::coupling::FluidStateProvider *provider);
+
+  // What particle i (local index) handed over / absorbed during the last step; the
+  // coupling distributes these to cells. Valid after end_of_step until the next step.
+  struct StepExchange {
+    double mass = 0.0;                     // molten mass [kg] (eq. 2.3)
+    double enthalpy = 0.0;                 // enthalpy with it [J] (eq. 2.9)
+    double momentum[3] = {0.0, 0.0, 0.0};  // momentum with it [kg m/s] (eq. 2.11)
+    double heat = 0.0;                     // heat absorbed from the fluid [J] (eq. 2.13)
+    double drag[3] = {0.0, 0.0, 0.0};      // drag force of this step [N] (eq. 2.14)
+  };
+  const StepExchange *step_exchange() const { return exchange; }
+
+ private:
+  // per-atom columns; dumps see TEMP and FRAC. MOLTEN = 1: fully molten, booked, removed
+  // at the next step's pre_exchange
+  enum { TEMP, FRAC, HSPEC, MASS0, MOLTEN, NCOL };
+  meltdem::coupling::MeltMaterial mat;
+  meltdem::coupling::DragModel drag_model;
+  double T0;
+  int ambient_flag;
+  std::unique_ptr<meltdem::coupling::UniformFluid> ambient;
+  const meltdem::coupling::FluidStateProvider *provider;
+
+  double **melt;           // per-atom state, columns above
+  StepExchange *exchange;  // per-atom exchange of the last step
+  int nmax_exchange;
+
+  // cumulative ledger (this rank): molten mass, enthalpy, momentum x/y/z, heat absorbed
+  meltdem::coupling::ExactSum ledger[6];
+  double vector_all[6];
+  int vector_dirty;
+  int warned_drag;
+
+  std::vector<int> gravity_fixes;
+
+  void refresh_output(int i);
+  int delete_molten();
+  const double *gravity(double *g) const;
+};
+
+}    // namespace LAMMPS_NS
+
+#endif
+#endif
