@@ -1,0 +1,79 @@
+// DRAFT (untested): pair granular with exact e -> alpha map (meltdem::coupling).
+#include "pair_granular_powder.h"
+#include "error.h"
+#include "atom.h"
+#include "force.h"
+#include "update.h"
+#include "meltdem/coupling/hertz_restitution.h"
+#include <cstring>
+#include <string>
+#include <vector>
+using namespace LAMMPS_NS;
+
+// PairGranular keeps normal_coeffs private in this LAMMPS version; an explicit
+// template instantiation may name private members (C++ [temp.explicit]), which lets
+// the subclass set alpha without forking the stock style.
+namespace {
+template <typename Tag, typename Tag::type M> struct Rob {
+  friend typename Tag::type get(Tag) { return M; }
+};
+struct NormalCoeffsTag {
+  typedef double ***PairGranular::*type;
+  friend type get(NormalCoeffsTag);
+};
+template struct Rob<NormalCoeffsTag, &PairGranular::normal_coeffs>;
+}    // namespace
+
+void PairGranularPowder::coeff(int narg, char **arg)
+{
+  // hertz/material E e nu ... damping tsuji|tsuji/alpha: find e and the damping form,
+  // let the stock parser do the rest, then overwrite alpha with the exact value.
+  int mode = 0;    // 0 none, 1 tsuji (exact e), 2 tsuji/alpha
+  double value = 0.0;
+  std::vector<std::string> copy(arg, arg + narg);
+  for (int i = 2; i < narg; i++) {
+    if (copy[i] == "hertz/material" && i + 3 < narg) value = utils::numeric(FLERR, arg[i + 2], false, lmp);
+    if (copy[i] == "damping" && i + 1 < narg) {
+      if (copy[i + 1] == "tsuji") mode = 1;
+      else if (copy[i + 1] == "tsuji/alpha") {
+        if (i + 2 >= narg) error->all(FLERR, "Illegal pair_coeff command: damping tsuji/alpha needs a value");
+        mode = 2;
+        value = utils::numeric(FLERR, arg[i + 2], false, lmp);
+        if (value < 0.0) error->all(FLERR, "Illegal pair_coeff command: tsuji/alpha must be >= 0");
+        copy[i + 1] = "tsuji";
+        copy.erase(copy.begin() + i + 2);
+      }
+    }
+  }
+  if (mode == 1 && (value <= 0.0 || value > 1.0))
+    error->all(FLERR, "Illegal pair_coeff command: restitution e must lie in (0,1] for damping tsuji");
+  // with tsuji/alpha the stock parser still needs a valid e in hertz/material: use 0.5
+  std::vector<char *> argv;
+  for (auto &s : copy) argv.push_back(const_cast<char *>(s.c_str()));
+  PairGranular::coeff((int) argv.size(), argv.data());
+  if (mode == 0) return;
+  const double alpha = (mode == 1) ? meltdem::coupling::alpha_for_restitution(value) : value;
+  int ilo, ihi, jlo, jhi;
+  utils::bounds(FLERR, arg[0], 1, atom->ntypes, ilo, ihi, error);
+  utils::bounds(FLERR, arg[1], 1, atom->ntypes, jlo, jhi, error);
+  for (int i = ilo; i <= ihi; i++)
+    for (int j = MAX(jlo, i); j <= jhi; j++)
+      if (setflag[i][j]) {
+        double ***nc = this->*get(NormalCoeffsTag());
+        nc[i][j][1] = nc[j][i][1] = alpha;
+      }
+}
+
+void PairGranularPowder::init_style()
+{
+  if (strcmp(update->unit_style, "si") != 0) error->all(FLERR, "Pair granular/powder requires units si");
+  PairGranular::init_style();
+}
+
+double PairGranularPowder::init_one(int i, int j)
+{
+  // stock mixing of unset i != j pairs is wrong in this LAMMPS version: refuse
+  if (setflag[i][j] == 0 && setflag[j][i] == 0)
+    error->all(FLERR, "Pair granular/powder: pair_coeff {} {} not set (mixed pairs must be given explicitly)", i, j);
+  return PairGranular::init_one(i, j);
+}

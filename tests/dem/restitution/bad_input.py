@@ -1,0 +1,40 @@
+#!/usr/bin/python3
+"""granular/powder must refuse bad input with a LAMMPS error naming the problem."""
+import os, subprocess, sys
+sys.path.insert(0, os.environ['MELTDEM_SOURCE_DIR'] + '/tests/support')
+from meltdem_report import report
+
+T = "dem.restitution.bad_input"
+BIN = os.path.join(os.environ['MELTDEM_BIN'], 'meltdem-lmp')
+HEAD = """units {units}
+atom_style sphere
+comm_modify vel yes
+region box block -1e-4 1e-4 -1e-4 1e-4 -1e-4 1e-4
+create_box 2 box
+create_atoms 1 single 0 0 0
+pair_style granular/powder
+"""
+GOOD = "pair_coeff 1 1 hertz/material 200e9 0.5 0.3 damping tsuji tangential linear_nohistory 1.0 0.0\n"
+cases = [
+    ("e > 1", "si", "pair_coeff * * hertz/material 200e9 1.2 0.3 damping tsuji tangential linear_nohistory 1.0 0.0\n",
+     "restitution e must lie in (0,1]"),
+    ("e = 0", "si", "pair_coeff * * hertz/material 200e9 0 0.3 damping tsuji tangential linear_nohistory 1.0 0.0\n",
+     "restitution e must lie in (0,1]"),
+    ("alpha < 0", "si", "pair_coeff * * hertz/material 200e9 0.5 0.3 damping tsuji/alpha -1 tangential linear_nohistory 1.0 0.0\n",
+     "tsuji/alpha must be >= 0"),
+    ("alpha missing", "si", "pair_coeff * * hertz/material 200e9 0.5 0.3 damping tsuji/alpha\n",
+     "damping tsuji/alpha needs a value"),
+    ("unset mixed pair", "si", GOOD + "pair_coeff 2 2 hertz/material 100e9 0.5 0.3 damping tsuji tangential linear_nohistory 1.0 0.0\nrun 0\n",
+     "pair_coeff 1 2 not set"),
+    ("non-SI units", "metal", "pair_coeff * * hertz/material 200e9 0.5 0.3 damping tsuji tangential linear_nohistory 1.0 0.0\nrun 0\n",
+     "requires units si"),
+]
+ok = True
+for what, units, tail, expect in cases:
+    with open('/tmp/meltdem_pair_bad.in', 'w') as f:
+        f.write(HEAD.format(units=units) + tail)
+    out = subprocess.run([BIN, '-log', 'none', '-in', '/tmp/meltdem_pair_bad.in'], capture_output=True, text=True)
+    text = out.stdout + out.stderr
+    got = out.returncode != 0 and expect in text
+    ok &= report(T, f"{what}: error containing '{expect}'", "yes" if got else "no", "yes", "exact", got)
+sys.exit(0 if ok else 1)

@@ -1,0 +1,33 @@
+#!/usr/bin/python3
+"""Head-on collision of two 30 um steel spheres (E = 200 GPa, nu = 0.3), relative
+speed 2 and 20 m/s, dt = 1e-10 s (t_c / dt ~ 800 at 2 m/s): pair_style granular/powder
+with 'damping tsuji' must return the prescribed e within 1 %; tsuji/alpha 1.5 must give
+coupling::restitution_for_alpha(1.5) = 0.05833. Stock granular's biased e is printed."""
+import os, subprocess, sys
+sys.path.insert(0, os.environ['MELTDEM_SOURCE_DIR'] + '/tests/support')
+from meltdem_report import check_relative, report
+
+T = "dem.restitution.monodisperse"
+BIN = os.path.join(os.environ['MELTDEM_BIN'], 'meltdem-lmp')
+IN = os.path.join(os.path.dirname(os.path.abspath(__file__)), 'in.head_on')
+
+
+def run(style, e, v, damp="tsuji"):
+    out = subprocess.run([BIN, '-log', 'none', '-in', IN, '-var', 'v', str(v), '-var', 'style', style,
+                          '-var', 'e', str(e), '-var', 'damp', damp, '-var', 'dt', '1e-10',
+                          '-var', 'n', '3000'], capture_output=True, text=True, cwd='/tmp')
+    for line in out.stdout.splitlines():
+        if line.startswith('RESULT'):
+            return float(line.split()[1])
+    sys.exit(f"no RESULT from meltdem-lmp:\n{out.stdout[-2000:]}\n{out.stderr[-2000:]}")
+
+
+ok = True
+for v in (1, 10):
+    for e in (0.3, 0.5, 0.7, 0.9):
+        ok &= check_relative(T, f"e at {2 * v} m/s (prescribed {e})", run('granular/powder', e, v), e, 0.01)
+        report(T, f"stock granular e at {2 * v} m/s (prescribed {e}, not asserted)",
+               run('granular', e, v), e, "none", True)
+ok &= check_relative(T, "e for tsuji/alpha 1.5 at 20 m/s", run('granular/powder', 0.5, 10, 'tsuji/alpha 1.5'),
+                     0.0583279, 0.01)
+sys.exit(0 if ok else 1)
