@@ -9,8 +9,14 @@ and appends the row to $MELTDEM_REPORT_DIR/<test>.tsv; it returns True when it p
 import os
 
 
-def report(test, what, measured, reference, tolerance, ok):
-    verdict = "PASS" if ok else "FAIL"
+def report(test, what, measured, reference, tolerance, ok, xfail=None):
+    """xfail: the reason a known miss is expected; a miss is then booked XFAIL (and the
+    call returns True), a pass is booked XPASS so the stale reason gets noticed."""
+    if xfail:
+        verdict = "XPASS" if ok else f"XFAIL ({xfail})"
+        ok = True
+    else:
+        verdict = "PASS" if ok else "FAIL"
     fmt = lambda v: f"{v:.10g}" if isinstance(v, float) else str(v)
     print(f"VALIDATION {test} | {what} | measured {fmt(measured)} | reference {fmt(reference)}"
           f" | tolerance {tolerance} | {verdict}", flush=True)
@@ -21,16 +27,16 @@ def report(test, what, measured, reference, tolerance, ok):
     return ok
 
 
-def check_relative(test, what, measured, reference, tol):
+def check_relative(test, what, measured, reference, tol, xfail=None):
     ok = abs(measured - reference) <= tol * abs(reference)
-    return report(test, what, float(measured), float(reference), f"{tol:g} relative", ok)
+    return report(test, what, float(measured), float(reference), f"{tol:g} relative", ok, xfail)
 
 
-def check_absolute(test, what, measured, reference, tol):
+def check_absolute(test, what, measured, reference, tol, xfail=None):
     ok = abs(measured - reference) <= tol
-    return report(test, what, float(measured), float(reference), f"{tol:g} absolute", ok)
+    return report(test, what, float(measured), float(reference), f"{tol:g} absolute", ok, xfail)
 
 
-def check_at_most(test, what, measured, bound):
+def check_at_most(test, what, measured, bound, xfail=None):
     ok = measured <= bound
-    return report(test, what, float(measured), f"<= {bound:g}", "bound", ok)
+    return report(test, what, float(measured), f"<= {bound:g}", "bound", ok, xfail)
