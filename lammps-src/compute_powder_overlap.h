@@ -6,7 +6,7 @@
 #ifdef COMPUTE_CLASS
 // clang-format off
 // no trailing semicolon: meltdem_styles.cpp expands this inside an array initializer
-ComputeStyle(powder/overlap,ComputePowderOverlap)
+ComputeStyle(powder/overlap,ComputePowderOverlap);
 // clang-format on
 #else
 
