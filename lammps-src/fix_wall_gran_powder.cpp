@@ -1,0 +1,173 @@
+/* ----------------------------------------------------------------------
+   MeltDEM: fix wall/gran/powder (see fix_wall_gran_powder.h, doc/fix_wall_gran_powder.rst)
+------------------------------------------------------------------------- */
+
+#include "fix_wall_gran_powder.h"
+
+#include "error.h"
+#include "lammps.h"
+#include "update.h"
+
+#include "meltdem/coupling/hertz_restitution.h"
+
+#include <cstring>
+
+using namespace LAMMPS_NS;
+
+namespace {
+bool is_wallstyle(const std::string &w)
+{
+  return w == "xplane" || w == "yplane" || w == "zplane" || w == "zcylinder" || w == "region";
+}
+}    // namespace
+
+/* ---------------------------------------------------------------------- */
+
+void WallGranPowderCoeffs::apply_material(double *normal_coeffs, double *tangential_coeffs) const
+{
+  // stock wall/gran sets 4/3 E/(2(1-nu)) here: neither E* of particle and wall nor
+  // the pair style's 4/3 E* (DESIGN.md pitfall 2)
+  if (material) normal_coeffs[0] = kn;
+  // stock sets E/4 (2-nu)(1+nu) for a NULL Mindlin stiffness; the pair style uses 8 G*
+  if (kt_from_material) tangential_coeffs[0] = kt;
+}
+
+void WallGranPowderCoeffs::apply_damping(double *normal_coeffs) const
+{
+  // stock init() maps normal_coeffs[1] by Tsuji's polynomial again on every run:
+  // overwrite it with the exact alpha after each init()
+  if (damping != DAMP_STOCK) normal_coeffs[1] = alpha;
+}
+
+/* ---------------------------------------------------------------------- */
+
+WallGranPowderArgs::WallGranPowderArgs(LAMMPS *lmp, int narg, char **arg, bool region_wall)
+{
+  Error *error = lmp->error;
+  const std::string style = narg > 2 ? arg[2] : "wall/gran/powder";
+  if (narg < 5) error->all(FLERR, "Illegal fix {} command: too few arguments", style);
+  if (strcmp(lmp->update->unit_style, "si") != 0)
+    error->all(FLERR, "Fix {} requires units si (E is given in Pa)", style);
+  if (strcmp(arg[3], "granular") != 0)
+    error->all(FLERR, "Fix {} supports only the 'granular' interaction style, not '{}'", style, arg[3]);
+
+  words.assign(arg, arg + narg);
+  enum { NONE, HOOKE, HERTZ, MATERIAL } model = NONE;
+  double E = 0.0, nu = 0.0, e = 0.0, Ew = 0.0, nuw = 0.0;
+  bool wall_given = false, rigid = false, kt_null = false, found_wallstyle = false;
+  auto need = [&](size_t i, size_t n, const char *what) {
+    if (i + n >= words.size())
+      error->all(FLERR, "Illegal fix {} command: {} needs {} value(s)", style, what, n);
+  };
+  auto num = [&](size_t i) { return utils::numeric(FLERR, words[i].c_str(), false, lmp); };
+
+  for (size_t i = 4; i < words.size(); i++) {
+    const std::string w = words[i];
+    if (is_wallstyle(w)) {
+      found_wallstyle = true;
+      if (w == "region" && !region_wall)
+        error->all(FLERR, "Fix {}: region walls need fix wall/gran/region/powder", style);
+      if (w != "region" && region_wall)
+        error->all(FLERR, "Fix {}: the wall style must be 'region ID', not '{}'", style, w);
+      if (w == "region") need(i, 1, "region");
+      break;    // the stock parser checks the wall arguments and options
+    }
+    if (w == "hooke" || w == "hertz") {
+      need(i, 2, w.c_str());
+      model = (w == "hooke") ? HOOKE : HERTZ;
+      e = num(i + 2);
+      i += 2;
+    } else if (w == "hertz/material" || w == "dmt" || w == "jkr") {
+      const size_t n = (w == "hertz/material") ? 3 : 4;
+      need(i, n, w.c_str());
+      model = MATERIAL;
+      E = num(i + 1);
+      e = num(i + 2);
+      nu = num(i + 3);
+      if (E <= 0.0) error->all(FLERR, "Illegal fix {} command: Young's modulus E must be > 0", style);
+      if (nu <= -1.0 || nu > 0.5)
+        error->all(FLERR, "Illegal fix {} command: Poisson's ratio must lie in (-1,0.5]", style);
+      i += n;
+    } else if (w == "damping") {
+      need(i, 1, "damping");
+      if (words[i + 1] == "tsuji") {
+        coeffs.damping = WallGranPowderCoeffs::DAMP_TSUJI_EXACT;
+      } else if (words[i + 1] == "tsuji/alpha") {
+        need(i + 1, 1, "damping tsuji/alpha");
+        coeffs.damping = WallGranPowderCoeffs::DAMP_TSUJI_ALPHA;
+        coeffs.alpha = num(i + 2);
+        if (coeffs.alpha < 0.0) error->all(FLERR, "Illegal fix {} command: tsuji/alpha must be >= 0", style);
+        // the stock parser knows only 'tsuji'; alpha replaces its mapped value in init()
+        words[i + 1] = "tsuji";
+        words.erase(words.begin() + i + 2);
+      }
+      i += 1;
+    } else if (w == "wall_material") {
+      need(i, 1, "wall_material");
+      if (words[i + 1] == "rigid") {
+        rigid = true;
+        words.erase(words.begin() + i, words.begin() + i + 2);
+      } else {
+        need(i, 2, "wall_material");
+        Ew = num(i + 1);
+        nuw = num(i + 2);
+        if (Ew <= 0.0) error->all(FLERR, "Illegal fix {} command: wall_material E must be > 0", style);
+        if (nuw <= -1.0 || nuw > 0.5)
+          error->all(FLERR, "Illegal fix {} command: wall_material Poisson's ratio must lie in (-1,0.5]", style);
+        words.erase(words.begin() + i, words.begin() + i + 3);
+      }
+      wall_given = true;
+      i -= 1;    // the next word now sits at i
+    } else if (w == "tangential") {
+      need(i, 1, "tangential");
+      if (words[i + 1].compare(0, 7, "mindlin") == 0 && i + 2 < words.size() && words[i + 2] == "NULL")
+        kt_null = true;
+      i += 1;
+    }
+    // anything else is left to the stock parser
+  }
+  if (!found_wallstyle)
+    error->all(FLERR, "Illegal fix {} command: missing wall style ({})", style,
+               region_wall ? "region ID" : "xplane, yplane, zplane or zcylinder");
+
+  if (coeffs.damping == WallGranPowderCoeffs::DAMP_TSUJI_EXACT) {
+    // e depends on alpha alone only for a Hertz contact (delta^3/2 spring, delta^1/4 damping)
+    if (model != MATERIAL && model != HERTZ)
+      error->all(FLERR, "Fix {}: damping tsuji needs normal model hertz/material or hertz", style);
+    if (e <= 0.0 || e > 1.0)
+      error->all(FLERR, "Illegal fix {} command: restitution e must lie in (0,1] for damping tsuji", style);
+    coeffs.alpha = meltdem::coupling::alpha_for_restitution(e);
+  }
+  if (wall_given && model != MATERIAL)
+    error->all(FLERR, "Fix {}: wall_material needs normal model hertz/material, dmt or jkr", style);
+  if (kt_null && model != MATERIAL)
+    error->all(FLERR, "Fix {}: a NULL Mindlin stiffness needs normal model hertz/material, dmt or jkr", style);
+
+  if (model == MATERIAL) {
+    // Hertz: 1/E* = (1-nu^2)/E + (1-nu_w^2)/E_w, 1/G* = 2(2-nu)(1+nu)/E + (wall); by
+    // default the wall is the particle's material, 'rigid' drops its term
+    if (!wall_given) Ew = E, nuw = nu;
+    const double inv_E = (1.0 - nu * nu) / E + (rigid ? 0.0 : (1.0 - nuw * nuw) / Ew);
+    const double inv_G = 2.0 * (2.0 - nu) * (1.0 + nu) / E + (rigid ? 0.0 : 2.0 * (2.0 - nuw) * (1.0 + nuw) / Ew);
+    coeffs.material = true;
+    coeffs.kn = 4.0 / 3.0 / inv_E;
+    coeffs.kt_from_material = kt_null;
+    coeffs.kt = 8.0 / inv_G;
+  }
+
+  for (auto &s : words) argv.push_back(const_cast<char *>(s.c_str()));
+}
+
+/* ---------------------------------------------------------------------- */
+
+FixWallGranPowder::FixWallGranPowder(LAMMPS *lmp, WallGranPowderArgs &&a) :
+    FixWallGran(lmp, a.narg(), a.arg()), coeffs(a.coeffs)
+{
+  coeffs.apply_material(normal_coeffs, tangential_coeffs);
+}
+
+void FixWallGranPowder::init()
+{
+  FixWallGran::init();
+  coeffs.apply_damping(normal_coeffs);
+}

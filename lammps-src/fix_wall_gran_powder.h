@@ -1,0 +1,73 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   MeltDEM: fix wall/gran/powder -- stock fix wall/gran (granular) with the
+   particle-wall E* of Hertz theory and the exact Tsuji e -> alpha map
+   (coupling/hertz_restitution.h), as pair_style granular/powder does for pairs.
+------------------------------------------------------------------------- */
+
+#ifdef FIX_CLASS
+// clang-format off
+// no trailing semicolon: meltdem_styles.cpp expands this inside an array initializer
+FixStyle(wall/gran/powder,FixWallGranPowder)
+// clang-format on
+#else
+
+#ifndef MELTDEM_FIX_WALL_GRAN_POWDER_H
+#define MELTDEM_FIX_WALL_GRAN_POWDER_H
+
+#include "fix_wall_gran.h"
+
+#include <string>
+#include <vector>
+
+namespace LAMMPS_NS {
+
+// What the powder wall fixes change in the stock coefficients (shared with
+// fix wall/gran/region/powder).
+struct WallGranPowderCoeffs {
+  enum { DAMP_STOCK, DAMP_TSUJI_EXACT, DAMP_TSUJI_ALPHA };
+  int damping = DAMP_STOCK;
+  double alpha = 0.0;        // Tsuji alpha (thesis eq. 3.5) for both tsuji forms
+  bool material = false;     // normal model hertz/material, dmt or jkr: kn from E*
+  double kn = 0.0;           // 4/3 E*, E* of particle and wall (the pair style's form)
+  bool kt_from_material = false;    // mindlin tangential with kt NULL
+  double kt = 0.0;           // 8 G*, G* of particle and wall
+
+  // copy the coefficients into a stock fix's protected arrays
+  void apply_material(double *normal_coeffs, double *tangential_coeffs) const;
+  void apply_damping(double *normal_coeffs) const;
+};
+
+// Reads the keywords the powder wall fixes add to 'fix wall/gran granular ...'
+// (damping tsuji/alpha A, wall_material Ew nuw | rigid), checks the arguments the
+// stock parser would read past the end of, and holds the argument list handed on to
+// the stock constructor.
+class WallGranPowderArgs {
+ public:
+  WallGranPowderArgs(class LAMMPS *lmp, int narg, char **arg, bool region_wall);
+  int narg() { return (int) argv.size(); }
+  char **arg() { return argv.data(); }
+  WallGranPowderCoeffs coeffs;
+
+ private:
+  std::vector<std::string> words;
+  std::vector<char *> argv;
+};
+
+class FixWallGranPowder : public FixWallGran {
+ public:
+  FixWallGranPowder(class LAMMPS *lmp, int narg, char **arg) :
+      FixWallGranPowder(lmp, WallGranPowderArgs(lmp, narg, arg, false))
+  {
+  }
+  void init() override;
+
+ private:
+  // the temporary argument list lives until this constructor returns
+  FixWallGranPowder(class LAMMPS *lmp, WallGranPowderArgs &&a);
+  WallGranPowderCoeffs coeffs;
+};
+
+}    // namespace LAMMPS_NS
+
+#endif
+#endif

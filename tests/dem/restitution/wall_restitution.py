@@ -1,0 +1,44 @@
+#!/usr/bin/python3
+"""Head-on impact of a 30 um steel sphere (E = 200 GPa, nu = 0.3) on fix wall/gran/powder
+(plane z = 0) at 2 and 20 m/s, no gravity, dt = 1e-10 s (t_c/dt ~ 700-1100): the measured
+e = |v_n after| / |v_n before| must be the prescribed e within 1 % for 'damping tsuji',
+and e(alpha) of the dimensionless Hertz-Tsuji contact (integrated here with scipy) for
+'damping tsuji/alpha' (alpha = 1: the thesis's wall value). Stock wall/gran is printed."""
+import os, subprocess, sys
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.environ['MELTDEM_SOURCE_DIR'] + '/tests/support')
+sys.path.insert(0, HERE)
+from meltdem_report import check_relative, report
+from hertz_ref import restitution_for_alpha
+
+T = "dem.restitution.wall"
+BIN = os.path.join(os.environ['MELTDEM_BIN'], 'meltdem-lmp')
+
+
+def run(style, e, v, damp="tsuji", extra=""):
+    wallfix = f"{style} granular hertz/material 200e9 {e} 0.3 damping {damp} {extra} tangential linear_nohistory 1.0 0.0"
+    out = subprocess.run([BIN, '-log', 'none', '-in', os.path.join(HERE, 'in.wall_head_on'), '-var', 'v', str(v),
+                          '-var', 'z0', '15.01e-6', '-var', 'dt', '1e-10', '-var', 'n', '3000', '-var', 'every', '3000',
+                          '-var', 'wallfix', wallfix], capture_output=True, text=True, cwd='/tmp')
+    for line in out.stdout.splitlines():
+        if line.startswith('RESULT'):
+            return float(line.split()[1])
+    sys.exit(f"no RESULT from meltdem-lmp:\n{out.stdout[-2000:]}\n{out.stderr[-2000:]}")
+
+
+ok = True
+for v in (2, 20):
+    for e in (0.3, 0.5, 0.7, 0.9):
+        ok &= check_relative(T, f"wall e at {v} m/s (prescribed {e})", run('wall/gran/powder', e, v), e, 0.01)
+        report(T, f"stock wall/gran e at {v} m/s (prescribed {e}, not asserted)",
+               run('wall/gran', e, v), e, "none", True)
+for alpha in (1.0, 0.01):
+    ref = restitution_for_alpha(alpha)
+    ok &= check_relative(T, f"wall e for tsuji/alpha {alpha} at 20 m/s", run('wall/gran/powder', 0.5, 20,
+                         f'tsuji/alpha {alpha}'), ref, 0.01)
+# a softer wall of another material and a rigid wall change E* but not e
+ok &= check_relative(T, "wall e at 20 m/s (prescribed 0.5, wall_material 70e9 0.33)",
+                     run('wall/gran/powder', 0.5, 20, extra='wall_material 70e9 0.33'), 0.5, 0.01)
+ok &= check_relative(T, "wall e at 20 m/s (prescribed 0.5, wall_material rigid)",
+                     run('wall/gran/powder', 0.5, 20, extra='wall_material rigid'), 0.5, 0.01)
+sys.exit(0 if ok else 1)
