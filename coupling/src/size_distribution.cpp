@@ -79,55 +79,40 @@ SizeDistribution SizeDistribution::uniform(double dlo, double dhi)
   return s;
 }
 
-SizeDistribution SizeDistribution::normal(double mean, double sd, double dlo, double dhi)
+SizeDistribution SizeDistribution::truncated(SizeDistKind kind, double p1, double p2, double dlo, double dhi)
 {
-  require(std::isfinite(mean) && mean > 0.0, "mean must be > 0");
-  require(std::isfinite(sd) && sd > 0.0, "sd must be > 0");
   check_range(dlo, dhi);
   SizeDistribution s;
-  s.kind_ = SizeDistKind::Normal;
-  s.p1_ = mean;
-  s.p2_ = sd;
+  s.kind_ = kind;
+  s.p1_ = p1;
+  s.p2_ = p2;
   s.lo_ = dlo;
   s.hi_ = dhi;
   s.glo_ = s.base_cdf(dlo);
   s.ghi_ = s.base_cdf(dhi);
   require(dlo == dhi || s.ghi_ - s.glo_ > 1e-12, "[dlo,dhi] holds no probability of the distribution");
   return s;
+}
+
+SizeDistribution SizeDistribution::normal(double mean, double sd, double dlo, double dhi)
+{
+  require(std::isfinite(mean) && mean > 0.0, "mean must be > 0");
+  require(std::isfinite(sd) && sd > 0.0, "sd must be > 0");
+  return truncated(SizeDistKind::Normal, mean, sd, dlo, dhi);
 }
 
 SizeDistribution SizeDistribution::lognormal(double median, double sigma_ln, double dlo, double dhi)
 {
   require(std::isfinite(median) && median > 0.0, "median must be > 0");
   require(std::isfinite(sigma_ln) && sigma_ln > 0.0, "sigma_ln must be > 0");
-  check_range(dlo, dhi);
-  SizeDistribution s;
-  s.kind_ = SizeDistKind::Lognormal;
-  s.p1_ = median;
-  s.p2_ = sigma_ln;
-  s.lo_ = dlo;
-  s.hi_ = dhi;
-  s.glo_ = s.base_cdf(dlo);
-  s.ghi_ = s.base_cdf(dhi);
-  require(dlo == dhi || s.ghi_ - s.glo_ > 1e-12, "[dlo,dhi] holds no probability of the distribution");
-  return s;
+  return truncated(SizeDistKind::Lognormal, median, sigma_ln, dlo, dhi);
 }
 
 SizeDistribution SizeDistribution::rosin_rammler(double d63, double n, double dlo, double dhi)
 {
   require(std::isfinite(d63) && d63 > 0.0, "d63 must be > 0");
   require(std::isfinite(n) && n > 0.0, "n must be > 0");
-  check_range(dlo, dhi);
-  SizeDistribution s;
-  s.kind_ = SizeDistKind::RosinRammler;
-  s.p1_ = d63;
-  s.p2_ = n;
-  s.lo_ = dlo;
-  s.hi_ = dhi;
-  s.glo_ = s.base_cdf(dlo);
-  s.ghi_ = s.base_cdf(dhi);
-  require(dlo == dhi || s.ghi_ - s.glo_ > 1e-12, "[dlo,dhi] holds no probability of the distribution");
-  return s;
+  return truncated(SizeDistKind::RosinRammler, d63, n, dlo, dhi);
 }
 
 SizeDistribution SizeDistribution::table(const std::vector<std::pair<double, double>> &rows)

@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """fix powder/dt and compute powder/overlap refuse bad input with a LAMMPS error naming
 the problem."""
-from dt_common import report, run, two_spheres
+from dt_common import check_errors, report, run, two_spheres
 
 TEST = "dem.dt.bad_input"
 BASE = two_spheres(-6e-5, 6e-5, 20e-6, 30e-6, 1.0, -1.0)
@@ -43,13 +43,5 @@ cases = [
     ("compute warn 0", comp("warn 0"), "warn must be no or a number of steps > 0"),
 ]
 
-ok = True
-for what, text, expected in cases:
-    rc, out = run(text, check=False)
-    errors = [line.strip() for line in out.splitlines() if line.startswith("ERROR")]
-    got = errors[0] if errors else f"(no ERROR line, exit code {rc})"
-    good = rc != 0 and any(expected in e for e in errors)
-    ok &= report(TEST, what, got, f"ERROR containing '{expected}'", "substring", good)
-    if not good:
-        print(out[-2000:])
+ok = check_errors(TEST, cases)
 raise SystemExit(0 if ok else 1)

@@ -2,14 +2,12 @@
 thermo, and eq. 3.1 evaluated independently of the C++ code."""
 import math
 import os
-import subprocess
 import sys
-import tempfile
 
 sys.path.insert(0, os.path.join(os.environ["MELTDEM_SOURCE_DIR"], "tests", "support"))
 from meltdem_report import check_absolute, check_at_most, check_relative, report  # noqa: E402,F401
+from lammps_run import LMP, check_errors, run, thermo_runs  # noqa: E402,F401
 
-LMP = os.path.join(os.environ["MELTDEM_BIN"], "meltdem-lmp")
 
 E, NU, RHO = 200e9, 0.3, 7900.0
 ESTAR = 1.0 / (2.0 * (1.0 - NU * NU) / E)  # eq. 3.2, same material
@@ -58,39 +56,3 @@ def delta_max(m1, m2, R1, R2, U, Es=ESTAR):
     ms = 1.0 / (1.0 / m1 + 1.0 / m2)
     Rs = 1.0 / (1.0 / R1 + 1.0 / R2)
     return (15.0 * ms * U * U / (16.0 * Es * math.sqrt(Rs))) ** 0.4
-
-
-def run(text, np=1, check=True, timeout=120):
-    """Run an input in a scratch folder; returns (returncode, stdout+stderr)."""
-    with tempfile.TemporaryDirectory() as d:
-        path = os.path.join(d, "in.test")
-        with open(path, "w") as f:
-            f.write(text)
-        cmd = [LMP, "-in", path, "-log", "none", "-echo", "none"]
-        if np > 1:
-            cmd = ["mpirun", "-np", str(np)] + cmd
-        p = subprocess.run(cmd, cwd=d, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-                           text=True, timeout=timeout)
-    if check and p.returncode != 0:
-        print(p.stdout[-4000:])
-        raise SystemExit(f"meltdem-lmp failed with exit code {p.returncode}")
-    return p.returncode, p.stdout
-
-
-def thermo_runs(out, first="Step"):
-    """Thermo rows grouped per run: a list (one per run) of lists of dicts."""
-    runs, rows, cols = [], None, None
-    for line in out.splitlines():
-        w = line.split()
-        if w and w[0] == first:
-            cols, rows = w, []
-            runs.append(rows)
-            continue
-        if cols and len(w) == len(cols):
-            try:
-                rows.append(dict(zip(cols, [float(x) for x in w])))
-            except ValueError:
-                cols = None
-        elif cols and w and w[0] == "Loop":
-            cols = None
-    return runs

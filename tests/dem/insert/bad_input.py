@@ -5,7 +5,7 @@ import os
 import sys
 import tempfile
 
-from insert_common import read_dump, report, run
+from insert_common import check_errors, read_dump, report, run
 
 TEST = "dem.insert.bad_input"
 HEADER = """units si
@@ -81,14 +81,7 @@ ok = True
 with tempfile.TemporaryDirectory() as d:
     with open(os.path.join(d, "bad_table.txt"), "w") as f:
         f.write("1e-3 1\n1.1e-3\n")
-    for what, text, expected in cases:
-        rc, out = run(text, check=False, cwd=d)
-        errors = [line.strip() for line in out.splitlines() if line.startswith("ERROR")]
-        got = errors[0] if errors else f"(no ERROR line, exit code {rc})"
-        good = rc != 0 and any(expected in e for e in errors)
-        ok &= report(TEST, what, got, f"ERROR containing '{expected}'", "substring", good)
-        if not good:
-            print(out[-2000:])
+    ok &= check_errors(TEST, cases, cwd=d)
 
     # the valid command, with temp applied through fix powder/melt
     melt = HEADER.replace("atom_style sphere", "atom_style sphere 1") + \

@@ -1,15 +1,13 @@
 """Helpers of the fix powder/insert tests: scenes, running meltdem-lmp, reading dumps/thermo."""
 import os
-import subprocess
 import sys
-import tempfile
 
 import numpy as np
 
 sys.path.insert(0, os.path.join(os.environ["MELTDEM_SOURCE_DIR"], "tests", "support"))
 from meltdem_report import check_absolute, check_at_most, check_relative, report  # noqa: E402,F401
+from lammps_run import LMP, check_errors, run  # noqa: E402,F401
 
-LMP = os.path.join(os.environ["MELTDEM_BIN"], "meltdem-lmp")
 
 # 1 mm soft spheres (E = 5 MPa keeps the step at 1e-5 s) in a 10 x 10 x 45 mm box closed by
 # fix wall/gran planes on all sides; the insertion region is the 10 mm cube 30..40 mm up,
@@ -47,24 +45,6 @@ dump d all custom 20 dump.ins id radius x y z
 dump_modify d sort id format float %.17g
 """
 TIGHT = SETUP + PHYSICS + INSERT + "\n" + OUTPUT
-
-
-def run(text, np=1, check=True, cwd=None, timeout=300):
-    """Run an input in cwd (or a scratch folder); returns (returncode, stdout+stderr)."""
-    with tempfile.TemporaryDirectory() as scratch:
-        d = cwd or scratch
-        path = os.path.join(d, "in.test")
-        with open(path, "w") as f:
-            f.write(text)
-        cmd = [LMP, "-in", path, "-log", "none", "-echo", "none"]
-        if np > 1:
-            cmd = ["mpirun", "-np", str(np)] + cmd
-        p = subprocess.run(cmd, cwd=d, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-                           text=True, timeout=timeout)
-    if check and p.returncode != 0:
-        print(p.stdout[-4000:])
-        raise SystemExit(f"meltdem-lmp failed with exit code {p.returncode}")
-    return p.returncode, p.stdout
 
 
 def thermo(out, first="Step"):

@@ -2,7 +2,7 @@
 """fix powder/melt refuses bad input with a LAMMPS error that names the problem."""
 import sys
 
-from melt_common import HEADER, report, run
+from melt_common import HEADER, check_errors, report, run
 
 TEST = "dem.melt.bad_input"
 OK_ARGS = "cp 48.35 Tmelt 1000 latent 2.7e5"
@@ -39,15 +39,7 @@ cases = [
     ("units metal", fix(OK_ARGS, HEADER.replace("units si", "units metal")), "requires units si"),
 ]
 
-ok = True
-for what, text, expected in cases:
-    rc, out = run(text, check=False)
-    errors = [line.strip() for line in out.splitlines() if line.startswith("ERROR")]
-    got = errors[0] if errors else f"(no ERROR line, exit code {rc})"
-    good = rc != 0 and any(expected in e for e in errors)
-    ok &= report(TEST, what, got, f"ERROR containing '{expected}'", "substring", good)
-    if not good:
-        print(out[-2000:])
+ok = check_errors(TEST, cases)
 
 # and the valid command runs
 rc, out = run(fix(OK_ARGS + " temp 300 drag schiller-naumann " + AMB), check=False)

@@ -55,6 +55,8 @@ class SizeDistribution {
   double mean_cube() const;         // E[d^3] of the number distribution (volume per particle * 6/pi)
 
  private:
+  // a parametric distribution (two parameters) truncated to [dlo, dhi]
+  static SizeDistribution truncated(SizeDistKind kind, double p1, double p2, double dlo, double dhi);
   double base_cdf(double d) const;  // untruncated CDF of the parameters (continuous kinds)
   double base_pdf(double d) const;
   void build_volume_table();

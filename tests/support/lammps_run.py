@@ -1,0 +1,69 @@
+"""Running meltdem-lmp from a test: one input text in a scratch folder, the output read back.
+
+    from lammps_run import run, thermo_runs, check_errors
+    rc, out = run(text, np=2)
+"""
+import os
+import subprocess
+import tempfile
+
+from meltdem_report import report
+
+LMP = os.path.join(os.environ["MELTDEM_BIN"], "meltdem-lmp")
+
+
+def run(text, np=1, check=True, cwd=None, timeout=300):
+    """Run an input (in a scratch folder, or in cwd); returns (returncode, stdout+stderr)."""
+    with tempfile.TemporaryDirectory() as scratch:
+        d = cwd or scratch
+        path = os.path.join(d, "in.test")
+        with open(path, "w") as f:
+            f.write(text)
+        cmd = [LMP, "-in", path, "-log", "none", "-echo", "none"]
+        if np > 1:
+            cmd = ["mpirun", "-np", str(np)] + cmd
+        p = subprocess.run(cmd, cwd=d, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                           text=True, timeout=timeout)
+    if check and p.returncode != 0:
+        print(p.stdout[-4000:])
+        raise SystemExit(f"meltdem-lmp failed with exit code {p.returncode}")
+    return p.returncode, p.stdout
+
+
+def thermo_runs(out, first="Step"):
+    """Thermo rows grouped per run: a list (one per run) of lists of dicts (columns by name)."""
+    runs, rows, cols = [], None, None
+    for line in out.splitlines():
+        w = line.split()
+        if w and w[0] == first:
+            cols, rows = w, []
+            runs.append(rows)
+            continue
+        if cols and len(w) == len(cols):
+            try:
+                rows.append(dict(zip(cols, [float(x) for x in w])))
+            except ValueError:
+                cols = None
+        elif cols and w and w[0] == "Loop":
+            cols = None
+    return runs
+
+
+def thermo_rows(out, first="Step"):
+    """All thermo rows of all runs, one list of dicts."""
+    return [row for rows in thermo_runs(out, first) for row in rows]
+
+
+def check_errors(test, cases, cwd=None):
+    """cases: (what, input text, expected substring of the ERROR line). Each must stop with
+    an ERROR line containing the substring; returns True when all do."""
+    ok = True
+    for what, text, expected in cases:
+        rc, out = run(text, check=False, cwd=cwd)
+        errors = [line.strip() for line in out.splitlines() if line.startswith("ERROR")]
+        got = errors[0] if errors else f"(no ERROR line, exit code {rc})"
+        good = rc != 0 and any(expected in e for e in errors)
+        ok &= report(test, what, got, f"ERROR containing '{expected}'", "substring", good)
+        if not good:
+            print(out[-2000:])
+    return ok
