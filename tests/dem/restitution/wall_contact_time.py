@@ -1,0 +1,69 @@
+#!/usr/bin/python3
+"""Contact duration of a 30 um steel sphere (E = 200 GPa, nu = 0.3, rho = 7800) hitting
+fix wall/gran/powder head-on, elastic (damping tsuji/alpha 0), vs thesis eq. 3.1 with the
+particle-wall values m* = m, R* = R and 1/E* = (1-nu^2)/E + (1-nu_w^2)/E_w: same-material
+wall, a 70 GPa wall (wall_material) and a rigid wall, at 2 and 20 m/s; dt = 1e-10 s
+(t_c/dt ~ 600-1100) and, as the issue asks, at S = t_c/dt = 10 (<= 2 %). The contact
+starts and ends where the gap z - r crosses 0 (linear interpolation between steps: the
+sphere moves force-free on both sides). Stock wall/gran (E* too stiff by 1+nu) is printed."""
+import math, os, subprocess, sys
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.environ['MELTDEM_SOURCE_DIR'] + '/tests/support')
+sys.path.insert(0, HERE)
+from meltdem_report import check_relative, report
+from hertz_ref import hertz_contact_time
+
+T = "dem.restitution.wall_contact_time"
+BIN = os.path.join(os.environ['MELTDEM_BIN'], 'meltdem-lmp')
+E, NU, RHO, D = 200e9, 0.3, 7800.0, 30e-6
+R = D / 2
+M = RHO * math.pi / 6 * D ** 3
+
+
+def measured_contact_time(style, v, dt, extra=""):
+    wallfix = f"{style} granular hertz/material {E} 0.5 {NU} damping tsuji/alpha 0 {extra} tangential linear_nohistory 1.0 0.0"
+    if style == 'wall/gran':    # stock: no tsuji/alpha; viscoelastic with 0 damping is elastic
+        wallfix = f"wall/gran granular hertz/material {E} 0 {NU} damping viscoelastic tangential linear_nohistory 1.0 0.0"
+    z0 = R + 3 * v * dt
+    n = int(2.5e-7 / dt) + 10 if v < 10 else int(1.5e-7 / dt) + 10
+    out = subprocess.run([BIN, '-log', 'none', '-in', os.path.join(HERE, 'in.wall_head_on'), '-var', 'v', str(v),
+                          '-var', 'z0', repr(z0), '-var', 'dt', repr(dt), '-var', 'n', str(n), '-var', 'every', '1',
+                          '-var', 'wallfix', wallfix], capture_output=True, text=True, cwd='/tmp')
+    rows = []
+    for line in out.stdout.splitlines():
+        f = line.split()
+        if len(f) == 5:
+            try:
+                rows.append([float(x) for x in f])
+            except ValueError:
+                pass
+    if not rows:
+        sys.exit(f"no thermo output from meltdem-lmp:\n{out.stdout[-2000:]}\n{out.stderr[-2000:]}")
+    t = [r[1] for r in rows]
+    gap = [r[2] - R for r in rows]
+    cross = [t[k] + gap[k] / (gap[k] - gap[k + 1]) * (t[k + 1] - t[k])
+             for k in range(len(gap) - 1) if (gap[k] > 0) != (gap[k + 1] > 0)]
+    if len(cross) != 2:
+        sys.exit(f"expected one contact (2 gap crossings), got {len(cross)}")
+    return cross[1] - cross[0]
+
+
+def estar(Ew=None, nuw=None, rigid=False):
+    inv = (1 - NU ** 2) / E + (0.0 if rigid else (1 - (nuw or NU) ** 2) / (Ew or E))
+    return 1.0 / inv
+
+
+ok = True
+for v in (2, 20):
+    for label, extra, es in (("same material", "", estar()),
+                             ("wall_material 70e9 0.33", "wall_material 70e9 0.33", estar(70e9, 0.33)),
+                             ("wall_material rigid", "wall_material rigid", estar(rigid=True))):
+        ref = hertz_contact_time(M, R, es, v)
+        ok &= check_relative(T, f"t_c at {v} m/s, {label}, dt 1e-10 (S = {ref / 1e-10:.0f})",
+                             measured_contact_time('wall/gran/powder', v, 1e-10, extra), ref, 0.005)
+    ref = hertz_contact_time(M, R, estar(), v)
+    ok &= check_relative(T, f"t_c at {v} m/s, same material, S = 10",
+                         measured_contact_time('wall/gran/powder', v, ref / 10), ref, 0.02)
+    report(T, f"stock wall/gran t_c at {v} m/s, same material (not asserted)",
+           measured_contact_time('wall/gran', v, 1e-10), ref, "none", True)
+sys.exit(0 if ok else 1)
