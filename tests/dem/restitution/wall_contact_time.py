@@ -2,7 +2,7 @@
 """Contact duration of a 30 um steel sphere (E = 200 GPa, nu = 0.3, rho = 7800) hitting
 fix wall/gran/powder head-on, elastic (damping tsuji/alpha 0), vs thesis eq. 3.1 with the
 particle-wall values m* = m, R* = R and 1/E* = (1-nu^2)/E + (1-nu_w^2)/E_w: same-material
-wall, a 70 GPa wall (wall_material) and a rigid wall, at 2 and 20 m/s; dt = 1e-10 s
+wall, a 70 GPa wall (wall_material) and a rigid wall, at 2 and 20 m/s, plane and region (fix wall/gran/region/powder) walls; dt = 1e-10 s
 (t_c/dt ~ 600-1100) and, as the issue asks, at S = t_c/dt = 10 (<= 2 %). The contact
 starts and ends where the gap z - r crosses 0 (linear interpolation between steps: the
 sphere moves force-free on both sides). Stock wall/gran (E* too stiff by 1+nu) is printed."""
@@ -20,7 +20,7 @@ R = D / 2
 M = RHO * math.pi / 6 * D ** 3
 
 
-def measured_contact_time(style, v, dt, extra=""):
+def measured_contact_time(style, v, dt, extra="", geom="zplane 0.0 NULL"):
     wallfix = f"{style} granular hertz/material {E} 0.5 {NU} damping tsuji/alpha 0 {extra} tangential linear_nohistory 1.0 0.0"
     if style == 'wall/gran':    # stock: no tsuji/alpha; viscoelastic with 0 damping is elastic
         wallfix = f"wall/gran granular hertz/material {E} 0 {NU} damping viscoelastic tangential linear_nohistory 1.0 0.0"
@@ -28,7 +28,7 @@ def measured_contact_time(style, v, dt, extra=""):
     n = int(2.5e-7 / dt) + 10 if v < 10 else int(1.5e-7 / dt) + 10
     out = subprocess.run([BIN, '-log', 'none', '-in', os.path.join(HERE, 'in.wall_head_on'), '-var', 'v', str(v),
                           '-var', 'z0', repr(z0), '-var', 'dt', repr(dt), '-var', 'n', str(n), '-var', 'every', '1',
-                          '-var', 'wallfix', wallfix], capture_output=True, text=True, cwd='/tmp')
+                          '-var', 'wallfix', wallfix, '-var', 'wallgeom', geom], capture_output=True, text=True, cwd='/tmp')
     rows = []
     for line in out.stdout.splitlines():
         f = line.split()
@@ -62,6 +62,8 @@ for v in (2, 20):
         ok &= check_relative(T, f"t_c at {v} m/s, {label}, dt 1e-10 (S = {ref / 1e-10:.0f})",
                              measured_contact_time('wall/gran/powder', v, 1e-10, extra), ref, 0.005)
     ref = hertz_contact_time(M, R, estar(), v)
+    ok &= check_relative(T, f"t_c at {v} m/s, region wall (block face), same material, dt 1e-10",
+                         measured_contact_time('wall/gran/region/powder', v, 1e-10, geom='region cup'), ref, 0.005)
     ok &= check_relative(T, f"t_c at {v} m/s, same material, S = 10",
                          measured_contact_time('wall/gran/powder', v, ref / 10), ref, 0.02)
     report(T, f"stock wall/gran t_c at {v} m/s, same material (not asserted)",

@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """Head-on impact of a 30 um steel sphere (E = 200 GPa, nu = 0.3) on fix wall/gran/powder
-(plane z = 0) at 2 and 20 m/s, no gravity, dt = 1e-10 s (t_c/dt ~ 700-1100): the measured
+(plane z = 0; and fix wall/gran/region/powder, the face of a block region) at 2 and 20 m/s, no gravity, dt = 1e-10 s (t_c/dt ~ 700-1100): the measured
 e = |v_n after| / |v_n before| must be the prescribed e within 1 % for 'damping tsuji',
 and e(alpha) of the dimensionless Hertz-Tsuji contact (integrated here with scipy) for
 'damping tsuji/alpha' (alpha = 1: the thesis's wall value). Stock wall/gran is printed."""
@@ -15,11 +15,11 @@ T = "dem.restitution.wall"
 BIN = os.path.join(os.environ['MELTDEM_BIN'], 'meltdem-lmp')
 
 
-def run(style, e, v, damp="tsuji", extra=""):
+def run(style, e, v, damp="tsuji", extra="", geom="zplane 0.0 NULL", init2=0):
     wallfix = f"{style} granular hertz/material 200e9 {e} 0.3 damping {damp} {extra} tangential linear_nohistory 1.0 0.0"
     out = subprocess.run([BIN, '-log', 'none', '-in', os.path.join(HERE, 'in.wall_head_on'), '-var', 'v', str(v),
                           '-var', 'z0', '15.01e-6', '-var', 'dt', '1e-10', '-var', 'n', '3000', '-var', 'every', '3000',
-                          '-var', 'wallfix', wallfix], capture_output=True, text=True, cwd='/tmp')
+                          '-var', 'wallfix', wallfix, '-var', 'wallgeom', geom, '-var', 'init2', str(init2)], capture_output=True, text=True, cwd='/tmp')
     for line in out.stdout.splitlines():
         if line.startswith('RESULT'):
             return float(line.split()[1])
@@ -36,6 +36,15 @@ for alpha in (1.0, 0.01):
     ref = restitution_for_alpha(alpha)
     ok &= check_relative(T, f"wall e for tsuji/alpha {alpha} at 20 m/s", run('wall/gran/powder', 0.5, 20,
                          f'tsuji/alpha {alpha}'), ref, 0.01)
+# a second init (run 0 before the run) must not change alpha
+ok &= check_relative(T, "wall e at 20 m/s after a 'run 0' (prescribed 0.5)", run('wall/gran/powder', 0.5, 20, init2=1),
+                     0.5, 0.01)
+report(T, "stock wall/gran e at 20 m/s after a 'run 0' (prescribed 0.5, not asserted)",
+       run('wall/gran', 0.5, 20, init2=1), 0.5, "none", True)
+# region walls (fix wall/gran/region/powder): the bottom face of a block region
+for e in (0.3, 0.5, 0.7, 0.9):
+    ok &= check_relative(T, f"region wall e at 20 m/s (prescribed {e})",
+                         run('wall/gran/region/powder', e, 20, geom='region cup'), e, 0.01)
 # a softer wall of another material and a rigid wall change E* but not e
 ok &= check_relative(T, "wall e at 20 m/s (prescribed 0.5, wall_material 70e9 0.33)",
                      run('wall/gran/powder', 0.5, 20, extra='wall_material 70e9 0.33'), 0.5, 0.01)
