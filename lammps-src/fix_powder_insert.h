@@ -35,6 +35,16 @@ class FixPowderInsert : public Fix {
   void write_restart(FILE *) override;
   void restart(char *) override;
 
+  // for pair styles that size their cutoff before any particle exists (granular/powder):
+  // the atom type inserted and the largest diameter still to come (pending ones included)
+  int insert_type() const { return ntype; }
+  double max_new_diameter() const
+  {
+    double d = dist.dmax();
+    for (double p : pending) d = p > d ? p : d;
+    return d;
+  }
+
  private:
   bigint ninsert;      // N requested
   int ntype;           // atom type of the new particles

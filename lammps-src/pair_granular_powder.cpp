@@ -4,6 +4,9 @@
 #include "atom.h"
 #include "force.h"
 #include "update.h"
+#include "modify.h"
+#include "fix_powder_insert.h"
+#include <mpi.h>
 #include "meltdem/coupling/hertz_restitution.h"
 #include <cstring>
 #include <string>
@@ -68,6 +71,16 @@ void PairGranularPowder::init_style()
 {
   if (strcmp(update->unit_style, "si") != 0) error->all(FLERR, "Pair granular/powder requires units si");
   PairGranular::init_style();
+  // the stock style sizes its cutoff from existing particles and fix pour/deposit only
+  // (an empty box gives 0): count the particles fix powder/insert will insert as well
+  for (int i = 0; i < modify->nfix; i++) {
+    auto *ins = dynamic_cast<FixPowderInsert *>(modify->fix[i]);
+    if (!ins) continue;
+    double rnew = 0.5 * ins->max_new_diameter(), rall = 0.0;
+    MPI_Allreduce(&rnew, &rall, 1, MPI_DOUBLE, MPI_MAX, world);
+    const int t = ins->insert_type();
+    maxrad_dynamic[t] = MAX(maxrad_dynamic[t], rall);
+  }
 }
 
 double PairGranularPowder::init_one(int i, int j)
