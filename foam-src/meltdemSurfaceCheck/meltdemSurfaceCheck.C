@@ -1,0 +1,129 @@
+/*---------------------------------------------------------------------------*\
+    MeltDEM
+
+Application
+    meltdemSurfaceCheck
+
+Description
+    Evaluates Foam::meltdem::surfaceForces on a case without solving
+    anything: sigma(T) at given temperatures, and the Marangoni force of the
+    fields alpha and T of the start time (its volume integral, direction,
+    and the share of it that is normal to the interface, which must vanish).
+    The surfaceTension sub-dictionary is read from constant/meltdemProperties
+    (or -dict).  Output lines are "key value..." for scripts.
+
+Usage
+    meltdemSurfaceCheck [-dict file] [-alpha alpha.metal] [-T "(300 1700)"]
+        [-write]
+
+\*---------------------------------------------------------------------------*/
+
+#include "fvCFD.H"
+#include "surfaceForces.H"
+
+int main(int argc, char *argv[])
+{
+    argList::addNote
+    (
+        "Evaluate sigma(T) and the Marangoni force of meltdem::surfaceForces"
+    );
+    argList::noParallel();
+    argList::addOption("dict", "file", "meltdemProperties file");
+    argList::addOption("alpha", "name", "metal fraction field (alpha.metal)");
+    argList::addOption("T", "list", "temperatures to print sigma at");
+    argList::addBoolOption("write", "write the marangoniForce field");
+
+    #include "setRootCase.H"
+    #include "createTime.H"
+    #include "createMesh.H"
+
+    const fileName dictPath
+    (
+        args.opt<fileName>
+        (
+            "dict",
+            runTime.constant()/"meltdemProperties"
+        )
+    );
+    IOdictionary props
+    (
+        IOobject
+        (
+            dictPath.isAbsolute()
+          ? dictPath
+          : fileName(runTime.path()/dictPath),
+            runTime,
+            IOobject::MUST_READ,
+            IOobject::NO_WRITE,
+            false
+        )
+    );
+
+    meltdem::surfaceForces forces(mesh, props.subDict("surfaceTension"));
+
+    if (args.found("T"))
+    {
+        const scalarList Ts(args.getList<scalar>("T"));
+        for (const scalar T : Ts)
+        {
+            Info<< "sigma " << T << ' ' << forces.sigma(T) << nl;
+        }
+    }
+
+    const word alphaName(args.opt<word>("alpha", "alpha.metal"));
+    volScalarField alpha
+    (
+        IOobject(alphaName, runTime.timeName(), mesh, IOobject::MUST_READ),
+        mesh
+    );
+    volScalarField T
+    (
+        IOobject("T", runTime.timeName(), mesh, IOobject::MUST_READ),
+        mesh
+    );
+
+    volVectorField F(forces.marangoniForce(alpha, T));
+
+    // Interface normal as the force uses it, to measure what is not tangential
+    const volVectorField gradAlpha(fvc::grad(alpha, "nHat"));
+    const volScalarField magGradAlpha(mag(gradAlpha));
+
+    vector total(Zero);
+    scalar sumMag = 0, sumNormal = 0, maxMag = 0;
+    forAll(F, celli)
+    {
+        const vector& f = F[celli];
+        const scalar V = mesh.V()[celli];
+        total += f*V;
+        sumMag += mag(f)*V;
+        maxMag = max(maxMag, mag(f));
+        if (magGradAlpha[celli] > SMALL)
+        {
+            const vector n(gradAlpha[celli]/magGradAlpha[celli]);
+            sumNormal += mag(n & f)*V;
+        }
+    }
+
+    if (!std::isfinite(sumMag))
+    {
+        FatalErrorInFunction
+            << "Marangoni force is not finite" << exit(FatalError);
+    }
+
+    Info<< "marangoniIntegral " << total.x() << ' ' << total.y() << ' '
+        << total.z() << nl
+        << "marangoniDirection "
+        << (mag(total) > VSMALL ? total/mag(total) : vector::zero) << nl
+        << "marangoniMagnitudeIntegral " << sumMag << nl
+        << "marangoniNormalFraction "
+        << (sumMag > VSMALL ? sumNormal/sumMag : 0) << nl
+        << "marangoniMax " << maxMag << nl;
+
+    if (args.found("write"))
+    {
+        F.write();
+    }
+
+    Info<< "End" << nl;
+    return 0;
+}

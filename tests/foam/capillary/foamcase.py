@@ -1,0 +1,248 @@
+"""Small writer for the 2D OpenFOAM cases of the surface-force tests (capillary, Marangoni, MJT).
+
+Cases are written from Python (no setFields / codeStream): a one-block 2D mesh with one cell in z
+(front/back 'empty'), fields as nonuniform lists on the structured cell order of blockMesh
+(x fastest, then y), and the dictionaries interFoam-type solvers read.
+"""
+import os
+import subprocess
+
+import numpy as np
+
+HEADER = """FoamFile
+{{
+    version     2.0;
+    format      ascii;
+    class       {cls};
+    object      {obj};
+}}
+"""
+
+
+def write(case, rel, cls, obj, body):
+    path = os.path.join(case, rel)
+    os.makedirs(os.path.dirname(path), exist_ok=True)
+    with open(path, "w") as f:
+        f.write(HEADER.format(cls=cls, obj=obj) + body)
+    return path
+
+
+def dictionary(case, rel, body):
+    return write(case, rel, "dictionary", os.path.basename(rel), body)
+
+
+class Grid2D:
+    """Uniform nx x ny grid on [x0, x0+lx] x [y0, y0+ly], one cell of thickness dz in z."""
+
+    def __init__(self, lx, ly, nx, ny, x0=0.0, y0=0.0, dz=None):
+        self.lx, self.ly, self.nx, self.ny, self.x0, self.y0 = lx, ly, nx, ny, x0, y0
+        self.dx, self.dy = lx / nx, ly / ny
+        self.dz = dz if dz is not None else self.dx
+        xc = x0 + (np.arange(nx) + 0.5) * self.dx
+        yc = y0 + (np.arange(ny) + 0.5) * self.dy
+        # blockMesh order: x fastest
+        self.X, self.Y = np.meshgrid(xc, yc)
+        self.x, self.y = self.X.ravel(), self.Y.ravel()
+
+    def block_mesh(self, case, patches=None):
+        """patches: dict side->(name, type) for sides left/right/bottom/top; default all 'walls' wall."""
+        p = {"left": ("walls", "wall"), "right": ("walls", "wall"),
+             "bottom": ("walls", "wall"), "top": ("walls", "wall")}
+        if patches:
+            p.update(patches)
+        faces = {"left": "(0 4 7 3)", "right": "(1 2 6 5)", "bottom": "(0 1 5 4)", "top": "(3 7 6 2)"}
+        groups = {}
+        for side in ("left", "right", "bottom", "top"):
+            name, typ = p[side]
+            groups.setdefault(name, [typ, []])[1].append(faces[side])
+        bnd = ""
+        for name, (typ, fl) in groups.items():
+            bnd += f"    {name}\n    {{\n        type {typ};\n        faces ({' '.join(fl)});\n    }}\n"
+        bnd += "    frontAndBack\n    {\n        type empty;\n        faces ((0 3 2 1) (4 5 6 7));\n    }\n"
+        x1, y1 = self.x0 + self.lx, self.y0 + self.ly
+        body = f"""convertToMeters 1;
+vertices
+(
+    ({self.x0!r} {self.y0!r} 0) ({x1!r} {self.y0!r} 0) ({x1!r} {y1!r} 0) ({self.x0!r} {y1!r} 0)
+    ({self.x0!r} {self.y0!r} {self.dz!r}) ({x1!r} {self.y0!r} {self.dz!r}) ({x1!r} {y1!r} {self.dz!r}) ({self.x0!r} {y1!r} {self.dz!r})
+);
+blocks ( hex (0 1 2 3 4 5 6 7) ({self.nx} {self.ny} 1) simpleGrading (1 1 1) );
+edges ();
+boundary
+(
+{bnd});
+mergePatchPairs ();
+"""
+        dictionary(case, "system/blockMeshDict", body)
+
+
+def _internal(values, vector=False):
+    v = np.asarray(values, dtype=float)
+    if vector:
+        items = "\n".join(f"({a:.12g} {b:.12g} {c:.12g})" for a, b, c in v)
+        return f"nonuniform List<vector>\n{len(v)}\n(\n{items}\n)"
+    if np.all(v == v.flat[0]):
+        return f"uniform {v.flat[0]:.12g}"
+    items = "\n".join(f"{a:.12g}" for a in v.ravel())
+    return f"nonuniform List<scalar>\n{v.size}\n(\n{items}\n)"
+
+
+def field(case, name, dims, values, boundary, vector=False, time="0"):
+    """boundary: dict patch -> body text (e.g. 'type zeroGradient;'); frontAndBack empty is added."""
+    b = dict(boundary)
+    b.setdefault("frontAndBack", "type empty;")
+    bf = "".join(f"    {k}\n    {{\n        {v}\n    }}\n" for k, v in b.items())
+    body = (f"dimensions {dims};\ninternalField {_internal(values, vector)};\n"
+            f"boundaryField\n{{\n{bf}}}\n")
+    write(case, f"{time}/{name}", "volVectorField" if vector else "volScalarField", name, body)
+
+
+def control_dict(case, app, end_time, dt, write_interval, extra="", max_co=0.2, max_alpha_co=0.2,
+                 max_dt=1.0, adjustable=True):
+    dictionary(case, "system/controlDict", f"""application {app};
+startFrom startTime;
+startTime 0;
+stopAt endTime;
+endTime {end_time!r};
+deltaT {dt!r};
+writeControl adjustableRunTime;
+writeInterval {write_interval!r};
+purgeWrite 0;
+writeFormat ascii;
+writePrecision 12;
+writeCompression off;
+timeFormat general;
+timePrecision 8;
+runTimeModifiable no;
+adjustTimeStep {'yes' if adjustable else 'no'};
+maxCo {max_co!r};
+maxAlphaCo {max_alpha_co!r};
+maxDeltaT {max_dt!r};
+{extra}
+""")
+
+
+def fv_schemes(case, extra_div=""):
+    dictionary(case, "system/fvSchemes", f"""ddtSchemes {{ default Euler; }}
+gradSchemes {{ default Gauss linear; }}
+divSchemes
+{{
+    default none;
+    div(rhoPhi,U)  Gauss linearUpwind grad(U);
+    div(phi,alpha)  Gauss vanLeer;
+    div(phirb,alpha) Gauss linear;
+    div(((rho*nuEff)*dev2(T(grad(U))))) Gauss linear;
+{extra_div}
+}}
+laplacianSchemes {{ default Gauss linear corrected; }}
+interpolationSchemes {{ default linear; }}
+snGradSchemes {{ default corrected; }}
+""")
+
+
+def fv_solution(case, alpha="alpha.metal", extra_solvers="", n_correctors=3, n_outer=1,
+                momentum_predictor="no"):
+    dictionary(case, "system/fvSolution", f"""solvers
+{{
+    "{alpha}.*"
+    {{
+        nAlphaCorr 2; nAlphaSubCycles 1; cAlpha 1; MULESCorr yes; nLimiterIter 5;
+        solver smoothSolver; smoother symGaussSeidel; tolerance 1e-10; relTol 0;
+    }}
+    "pcorr.*" {{ solver PCG; preconditioner DIC; tolerance 1e-8; relTol 0; }}
+    p_rgh {{ solver PCG; preconditioner DIC; tolerance 1e-9; relTol 0.01; }}
+    p_rghFinal {{ $p_rgh; relTol 0; }}
+    "U.*" {{ solver smoothSolver; smoother symGaussSeidel; tolerance 1e-9; relTol 0; }}
+{extra_solvers}
+}}
+PIMPLE
+{{
+    momentumPredictor {momentum_predictor};
+    nOuterCorrectors {n_outer};
+    nCorrectors {n_correctors};
+    nNonOrthogonalCorrectors 0;
+}}
+relaxationFactors {{ equations {{ ".*" 1; }} }}
+""")
+
+
+def transport(case, rho_metal, nu_metal, rho_gas, nu_gas, sigma):
+    dictionary(case, "constant/transportProperties", f"""phases (metal gas);
+metal {{ transportModel Newtonian; nu {nu_metal!r}; rho {rho_metal!r}; }}
+gas {{ transportModel Newtonian; nu {nu_gas!r}; rho {rho_gas!r}; }}
+sigma {sigma!r};
+""")
+    dictionary(case, "constant/turbulenceProperties", "simulationType laminar;\n")
+
+
+def gravity(case, g=(0.0, 0.0, 0.0)):
+    write(case, "constant/g", "uniformDimensionedVectorField", "g",
+          f"dimensions [0 1 -2 0 0 0 0];\nvalue ({g[0]!r} {g[1]!r} {g[2]!r});\n")
+
+
+def run(cmd, case, log, env=None, check=True):
+    e = dict(os.environ)
+    e.setdefault("WM_PROJECT_DIR", "/usr/share/openfoam")
+    if env:
+        e.update(env)
+    with open(os.path.join(case, log), "w") as f:
+        r = subprocess.run(cmd, cwd=case, stdout=f, stderr=subprocess.STDOUT, env=e)
+    if check and r.returncode != 0:
+        with open(os.path.join(case, log)) as f:
+            tail = f.read()[-3000:]
+        raise RuntimeError(f"{' '.join(cmd)} failed (rc {r.returncode}) in {case}:\n{tail}")
+    return r.returncode
+
+
+def read_internal(path):
+    """Internal field of an ascii OpenFOAM field file (scalar or vector) as a numpy array."""
+    with open(path) as f:
+        txt = f.read()
+    i = txt.index("internalField")
+    rest = txt[i + len("internalField"):].lstrip()
+    if rest.startswith("uniform"):
+        val = rest[len("uniform"):].split(";")[0].strip()
+        if val.startswith("("):
+            return np.array([float(t) for t in val.strip("()").split()])
+        return np.array(float(val))
+    # nonuniform List<type> N ( ... )
+    j = rest.index("(")
+    k = rest.index("\n)", j)
+    body = rest[j + 1:k]
+    if "List<vector>" in rest[:j]:
+        return np.array([[float(t) for t in line.strip().strip("()").split()]
+                         for line in body.strip().splitlines() if line.strip()])
+    return np.array([float(t) for t in body.split()])
+
+
+def time_dirs(case):
+    out = []
+    for d in os.listdir(case):
+        try:
+            out.append((float(d), d))
+        except ValueError:
+            pass
+    return [d for _, d in sorted(out)]
+
+
+def smooth_alpha_disc(grid, xc, yc, r, width=None, nsub=8):
+    """Volume fraction of a disc of radius r by sub-sampling each cell (nsub^2 points)."""
+    s = (np.arange(nsub) + 0.5) / nsub - 0.5
+    a = np.zeros(grid.x.size)
+    for sx in s:
+        for sy in s:
+            px = grid.x + sx * grid.dx
+            py = grid.y + sy * grid.dy
+            a += ((px - xc) ** 2 + (py - yc) ** 2 <= r * r)
+    return a / nsub ** 2
+
+
+def alpha_rect(grid, x0, x1, y0, y1, nsub=8):
+    s = (np.arange(nsub) + 0.5) / nsub - 0.5
+    a = np.zeros(grid.x.size)
+    for sx in s:
+        for sy in s:
+            px = grid.x + sx * grid.dx
+            py = grid.y + sy * grid.dy
+            a += (px >= x0) & (px <= x1) & (py >= y0) & (py <= y1)
+    return a / nsub ** 2
