@@ -1,4 +1,4 @@
-// DRAFT (untested): pair granular with exact e -> alpha map (meltdem::coupling).
+// pair granular with the exact e -> alpha map of meltdem::coupling (doc/pair_granular_powder.rst).
 #include "pair_granular_powder.h"
 #include "error.h"
 #include "atom.h"
@@ -33,9 +33,14 @@ void PairGranularPowder::coeff(int narg, char **arg)
   // let the stock parser do the rest, then overwrite alpha with the exact value.
   int mode = 0;    // 0 none, 1 tsuji (exact e), 2 tsuji/alpha
   double value = 0.0;
+  bool hertz = false;    // e depends on alpha alone only for a Hertz contact
   std::vector<std::string> copy(arg, arg + narg);
   for (int i = 2; i < narg; i++) {
-    if (copy[i] == "hertz/material" && i + 3 < narg) value = utils::numeric(FLERR, arg[i + 2], false, lmp);
+    if ((copy[i] == "hertz/material" && i + 3 < narg) || (copy[i] == "hertz" && i + 2 < narg)) {
+      value = utils::numeric(FLERR, arg[i + 2], false, lmp);
+      hertz = true;
+    }
+    if (copy[i] == "hooke" || copy[i] == "dmt" || copy[i] == "jkr") hertz = false;
     if (copy[i] == "damping" && i + 1 < narg) {
       if (copy[i + 1] == "tsuji") mode = 1;
       else if (copy[i + 1] == "tsuji/alpha") {
@@ -48,6 +53,9 @@ void PairGranularPowder::coeff(int narg, char **arg)
       }
     }
   }
+  if (mode == 1 && !hertz)
+    error->all(FLERR, "Illegal pair_coeff command: damping tsuji needs normal model hertz/material or hertz "
+               "(use tsuji/alpha otherwise)");
   if (mode == 1 && (value <= 0.0 || value > 1.0))
     error->all(FLERR, "Illegal pair_coeff command: restitution e must lie in (0,1] for damping tsuji");
   // with tsuji/alpha the stock parser still needs a valid e in hertz/material: use 0.5

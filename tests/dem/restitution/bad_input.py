@@ -24,6 +24,8 @@ cases = [
      "tsuji/alpha must be >= 0"),
     ("alpha missing", "si", "pair_coeff * * hertz/material 200e9 0.5 0.3 damping tsuji/alpha\n",
      "damping tsuji/alpha needs a value"),
+    ("tsuji with dmt", "si", "pair_coeff * * dmt 200e9 0.5 0.3 1e-3 damping tsuji tangential linear_nohistory 1.0 0.0\n",
+     "damping tsuji needs normal model hertz/material or hertz"),
     ("unset mixed pair", "si", GOOD + "pair_coeff 2 2 hertz/material 100e9 0.5 0.3 damping tsuji tangential linear_nohistory 1.0 0.0\nrun 0\n",
      "pair_coeff 1 2 not set"),
     ("non-SI units", "metal", "pair_coeff * * hertz/material 200e9 0.5 0.3 damping tsuji tangential linear_nohistory 1.0 0.0\nrun 0\n",
