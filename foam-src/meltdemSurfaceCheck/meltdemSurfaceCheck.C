@@ -20,6 +20,7 @@ Usage
 
 #include "fvCFD.H"
 #include "surfaceForces.H"
+#include "fvcReconstruct.H"
 
 int main(int argc, char *argv[])
 {
@@ -119,9 +120,29 @@ int main(int argc, char *argv[])
         << (sumMag > VSMALL ? sumNormal/sumMag : 0) << nl
         << "marangoniMax " << maxMag << nl;
 
+    // Interface-weighted mean curvature (nSmooth of the dictionary) and the
+    // net CSF force, which must vanish for a closed interface
+    const volScalarField K(forces.curvature(alpha));
+    const scalarField w(magGradAlpha.primitiveField()*mesh.V());
+    const volVectorField fCSF
+    (
+        fvc::reconstruct
+        (
+            forces.surfaceForce(alpha, K, T)*mesh.magSf()
+        )
+    );
+    const vector netCSF(gSum(fCSF.primitiveField()*mesh.V()));
+    Info<< "curvatureMean " << gSum(K.primitiveField()*w)/max(gSum(w), VSMALL)
+        << nl
+        << "csfNet " << netCSF.x() << ' ' << netCSF.y() << ' ' << netCSF.z()
+        << nl
+        << "csfMagnitudeIntegral " << gSum(mag(fCSF.primitiveField())*mesh.V())
+        << nl;
+
     if (args.found("write"))
     {
         F.write();
+        K.write();
     }
 
     Info<< "End" << nl;

@@ -6,6 +6,8 @@
 #include "fvcGrad.H"
 #include "fvcSnGrad.H"
 #include "surfaceInterpolate.H"
+#include "fvcDiv.H"
+#include "fvcAverage.H"
 
 #include <cmath>
 
@@ -35,8 +37,15 @@ Foam::meltdem::surfaceForces::surfaceForces
     ),
     Tsigma0_("Tsigma0", dimTemperature, dict.get<scalar>("Tsigma0")),
     sigmaMin_("sigmaMin", dimSigma, dict.get<scalar>("sigmaMin")),
-    deltaN_("deltaN", 1e-8/cbrt(average(mesh.V())))
+    deltaN_("deltaN", 1e-8/cbrt(average(mesh.V()))),
+    nSmooth_(dict.getOrDefault<label>("nSmooth", 0))
 {
+    if (nSmooth_ < 0)
+    {
+        FatalIOErrorInFunction(dict)
+            << "surfaceTension entry 'nSmooth' = " << nSmooth_
+            << " must be >= 0" << exit(FatalIOError);
+    }
     if (sigma0_.value() <= 0)
     {
         FatalIOErrorInFunction(dict)
@@ -97,6 +106,31 @@ Foam::meltdem::surfaceForces::sigma(const volScalarField& T) const
 }
 
 
+Foam::tmp<Foam::volScalarField>
+Foam::meltdem::surfaceForces::curvature(const volScalarField& alpha) const
+{
+    volScalarField alphaS("alphaSmooth", 1.0*alpha);
+    for (label i = 0; i < nSmooth_; ++i)
+    {
+        alphaS = fvc::average(fvc::interpolate(alphaS));
+    }
+
+    // interfaceProperties::calculateK() on the smoothed field
+    const surfaceVectorField gradAlphaf
+    (
+        fvc::interpolate(fvc::grad(alphaS, "nHat"))
+    );
+    const surfaceScalarField nHatf
+    (
+        (gradAlphaf/(mag(gradAlphaf) + deltaN_)) & mesh_.Sf()
+    );
+
+    tmp<volScalarField> tK(-fvc::div(nHatf));
+    tK.ref().rename("K");
+    return tK;
+}
+
+
 Foam::tmp<Foam::surfaceScalarField>
 Foam::meltdem::surfaceForces::surfaceForce
 (
@@ -107,14 +141,21 @@ Foam::meltdem::surfaceForces::surfaceForce
 ) const
 {
     // Same discretisation as interfaceProperties::surfaceTensionForce(), so
-    // that a uniform T reproduces interFoam's balanced force exactly
+    // that a uniform T (and nSmooth 0) reproduces interFoam's balanced force
+    tmp<volScalarField> tKs;
+    if (nSmooth_ > 0)
+    {
+        tKs = curvature(alpha);
+    }
+    const volScalarField& Kused = nSmooth_ > 0 ? tKs() : K;
+
     if (pRecoil)
     {
         return
-            fvc::interpolate(sigma(T)*K + *pRecoil)*fvc::snGrad(alpha);
+            fvc::interpolate(sigma(T)*Kused + *pRecoil)*fvc::snGrad(alpha);
     }
 
-    return fvc::interpolate(sigma(T)*K)*fvc::snGrad(alpha);
+    return fvc::interpolate(sigma(T)*Kused)*fvc::snGrad(alpha);
 }
 
 

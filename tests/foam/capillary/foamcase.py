@@ -141,7 +141,9 @@ snGradSchemes {{ default corrected; }}
 
 
 def fv_solution(case, alpha="alpha.metal", extra_solvers="", n_correctors=3, n_outer=1,
-                momentum_predictor="no"):
+                momentum_predictor="no", p_ref_cell=None):
+    """p_ref_cell: cell index of the pressure reference (closed domains), value 0."""
+    ref = "" if p_ref_cell is None else f"    pRefCell {p_ref_cell};\n    pRefValue 0;\n"
     dictionary(case, "system/fvSolution", f"""solvers
 {{
     "{alpha}.*"
@@ -161,7 +163,7 @@ PIMPLE
     nOuterCorrectors {n_outer};
     nCorrectors {n_correctors};
     nNonOrthogonalCorrectors 0;
-}}
+{ref}}}
 relaxationFactors {{ equations {{ ".*" 1; }} }}
 """)
 
@@ -183,6 +185,7 @@ def gravity(case, g=(0.0, 0.0, 0.0)):
 def run(cmd, case, log, env=None, check=True):
     e = dict(os.environ)
     e.setdefault("WM_PROJECT_DIR", "/usr/share/openfoam")
+    e["PWD"] = os.path.abspath(case)
     if env:
         e.update(env)
     with open(os.path.join(case, log), "w") as f:
