@@ -249,3 +249,43 @@ def alpha_rect(grid, x0, x1, y0, y1, nsub=8):
             py = grid.y + sy * grid.dy
             a += (px >= x0) & (px <= x1) & (py >= y0) & (py <= y1)
     return a / nsub ** 2
+
+
+# SPH paper tables 1-3 (stainless steel near Tm = 1700 K, atmospheric gas scaled as there)
+METAL = dict(rho=7430.0, mu=6.0e-3, cp=965.0, k=35.95, sigma0=1.8, dSigmadT=-1.0e-3, Tsigma0=1700.0,
+             sigmaMin=0.2, Tm=1700.0)
+GAS = dict(rho=7.43, mu=6.0e-4, cp=10.0, k=0.026)
+
+PHYSICS_OFF = dict(flow="on", energy="off", darcy="off", surfaceTension="on", marangoni="off",
+                   recoil="off", laser="off", evaporation="off", buoyancy="off")
+
+
+def meltdem_properties(case, physics=None, surface=None, extra=""):
+    """constant/meltdemProperties as FOAM.md lays it out; physics overrides PHYSICS_OFF,
+    surface overrides the surfaceTension entries of METAL (e.g. nSmooth)."""
+    ph = dict(PHYSICS_OFF)
+    ph.update(physics or {})
+    st = {k: METAL[k] for k in ("sigma0", "dSigmadT", "Tsigma0", "sigmaMin")}
+    st.update(surface or {})
+    body = "physics\n{\n" + "".join(f"    {k} {v};\n" for k, v in ph.items()) + "}\n"
+    body += "surfaceTension\n{\n" + "".join(f"    {k} {v!r};\n" for k, v in st.items()) + "}\n"
+    body += extra
+    dictionary(case, "constant/meltdemProperties", body)
+
+
+def solver():
+    """The solver under test: $MELTDEM_FOAM_SOLVER (to try a case with another build) or
+    $MELTDEM_BIN/meltdemFoam."""
+    return os.environ.get("MELTDEM_FOAM_SOLVER") or os.path.join(os.environ["MELTDEM_BIN"], "meltdemFoam")
+
+
+def contour_radii(grid, alpha, xc, yc, level=0.5):
+    """Distances from (xc, yc) of the points of the alpha = level contour (matplotlib)."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    cs = plt.contour(grid.X, grid.Y, alpha.reshape(grid.ny, grid.nx), [level])
+    segs = [s for s in cs.allsegs[0] if len(s)]
+    plt.close("all")
+    pts = np.vstack(segs)
+    return np.hypot(pts[:, 0] - xc, pts[:, 1] - yc)

@@ -1,0 +1,82 @@
+#!/usr/bin/env python3
+"""Marangoni-driven surface flow: a flat metal layer (20 um) under gas (80 um), no gravity,
+T imposed linear along the surface (1800 K left -> 1600 K right, fixed on the end walls).
+With dSigmadT < 0 the surface must flow from hot to cold (+x). Magnitude reference: the
+start-up of two semi-infinite fluids under a constant surface shear tau = |dsigma/dT| dT/dx,
+    u_s(t) = 2 tau sqrt(t/pi) / (sqrt(rho_l mu_l) + sqrt(rho_g mu_g)),
+valid while both diffusion lengths stay inside their layers (here t <= 10 us:
+sqrt(nu_l t) = 2.8 um, sqrt(nu_g t) = 28 um) and away from the end walls (middle half).
+"""
+import os
+import shutil
+import sys
+import tempfile
+
+import numpy as np
+
+src = os.environ["MELTDEM_SOURCE_DIR"]
+sys.path.insert(0, os.path.join(src, "tests", "support"))
+sys.path.insert(0, os.path.join(src, "tests", "foam", "capillary"))
+from meltdem_report import check_relative, check_absolute, check_at_most  # noqa: E402
+import foamcase as fc  # noqa: E402
+
+TEST = "foam.marangoni_flow"
+M, G = fc.METAL, fc.GAS
+L, h, H, nx, dy = 200e-6, 20e-6, 80e-6, 25, 1e-6
+TL, TR = 1800.0, 1600.0
+t_end = 1.0e-5
+
+work = tempfile.mkdtemp(prefix="marangoni_flow.")
+ny = int(round((h + H) / dy))
+
+
+def make_and_run(case, marangoni):
+    g = fc.Grid2D(L, h + H, nx, ny, dz=4e-6)
+    g.block_mesh(case, {"left": ("left", "wall"), "right": ("right", "wall")})
+    fc.control_dict(case, "meltdemFoam", t_end, 1e-9, t_end / 4, max_co=0.2, max_alpha_co=0.2, max_dt=5e-8)
+    fc.fv_schemes(case)
+    fc.fv_solution(case, p_ref_cell=0)
+    fc.transport(case, M["rho"], M["mu"] / M["rho"], G["rho"], G["mu"] / G["rho"], M["sigma0"])
+    fc.gravity(case)
+    fc.meltdem_properties(case, physics={"marangoni": marangoni})
+    sides = {"left": "type zeroGradient;", "right": "type zeroGradient;", "walls": "type zeroGradient;"}
+    fc.field(case, "alpha.metal", "[0 0 0 0 0 0 0]", (g.y < h).astype(float), sides)
+    # linear in x with fixed end values: also the steady conduction solution if energy is solved
+    fc.field(case, "T", "[0 0 0 1 0 0 0]", TL + (TR - TL) * g.x / L,
+             {"left": f"type fixedValue; value uniform {TL!r};", "right": f"type fixedValue; value uniform {TR!r};",
+              "walls": "type zeroGradient;"})
+    fc.field(case, "U", "[0 1 -1 0 0 0 0]", np.zeros((g.x.size, 3)),
+             {k: "type noSlip;" for k in sides}, vector=True)
+    fc.field(case, "p_rgh", "[1 -1 -2 0 0 0 0]", np.zeros(g.x.size),
+             {k: "type fixedFluxPressure; value uniform 0;" for k in sides})
+    fc.run(["blockMesh"], case, "log.blockMesh")
+    fc.run([fc.solver()], case, "log.solver")
+
+
+case = os.path.join(work, "layer")
+make_and_run(case, "on")
+tau = abs(M["dSigmadT"]) * (TL - TR) / L
+ok = True
+times = fc.time_dirs(case)[1:]
+ok &= len(times) == 4 and abs(float(times[-1]) - t_end) < 1e-12
+j, mid = int(round(h / dy)), slice(nx // 4, 3 * nx // 4)
+for d in times:
+    t = float(d)
+    U = fc.read_internal(os.path.join(case, d, "U")).reshape(ny, nx, 3)
+    us = 0.5 * (U[j - 1, mid, 0] + U[j, mid, 0])      # the two cell rows either side of the surface
+    ref = 2 * tau * np.sqrt(t / np.pi) / (np.sqrt(M["rho"] * M["mu"]) + np.sqrt(G["rho"] * G["mu"]))
+    print(f"t = {t:.3g} s: surface u_x mean {us.mean():.4g} (min {us.min():.4g}) m/s, reference {ref:.4g} m/s")
+ok &= check_absolute(TEST, "sign of the surface velocity u_x (hot x=0 -> cold x=L), cells of the middle half not > 0",
+                     int(np.sum(us <= 0)), 0, 0)
+ok &= check_relative(TEST, f"surface velocity at t={t:g} s [m/s] vs two-fluid start-up 2 tau sqrt(t/pi)/(e_l+e_g)",
+                     us.mean(), ref, 0.10)
+# the switch: with marangoni off the same layer must stay (nearly) at rest
+off = os.path.join(work, "off")
+make_and_run(off, "off")
+U = fc.read_internal(os.path.join(off, fc.time_dirs(off)[-1], "U")).reshape(ny, nx, 3)
+ok &= check_at_most(TEST, "marangoni off: max surface |u_x| / reference", np.abs(U[j - 1:j + 1, mid, 0]).max() / ref, 0.01)
+if ok:
+    shutil.rmtree(work)
+else:
+    print("case kept in", case)
+sys.exit(0 if ok else 1)
