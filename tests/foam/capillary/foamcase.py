@@ -44,6 +44,45 @@ class Grid2D:
         self.X, self.Y = np.meshgrid(xc, yc)
         self.x, self.y = self.X.ravel(), self.Y.ravel()
 
+    def wedge_mesh(self, case, patches=None, angle_deg=5.0):
+        """Axisymmetric variant: x is the radius (x0 must be 0), y the axis; one wedge cell of
+        angle_deg in the circumferential direction ('front'/'back' wedge, 'axis' collapsed).
+        Cell volumes are then ~ x dx dy angle (see volumes())."""
+        assert self.x0 == 0.0
+        p = {"right": ("walls", "wall"), "bottom": ("walls", "wall"), "top": ("walls", "wall")}
+        if patches:
+            p.update(patches)
+        import math
+        th = math.radians(angle_deg) / 2
+        r, y0, y1 = self.lx, self.y0, self.y0 + self.ly
+        c, sn = r * math.cos(th), r * math.sin(th)
+        faces = {"right": "(1 2 5 4)", "bottom": "(0 1 4 0)", "top": "(3 5 2 3)"}
+        groups = {}
+        for side in ("right", "bottom", "top"):
+            name, typ = p[side]
+            groups.setdefault(name, [typ, []])[1].append(faces[side])
+        bnd = ""
+        for name, (typ, fl) in groups.items():
+            bnd += f"    {name}\n    {{\n        type {typ};\n        faces ({' '.join(fl)});\n    }}\n"
+        bnd += "    front\n    {\n        type wedge;\n        faces ((0 4 5 3));\n    }\n"
+        bnd += "    back\n    {\n        type wedge;\n        faces ((0 3 2 1));\n    }\n"
+        bnd += "    axis\n    {\n        type empty;\n        faces ((0 3 3 0));\n    }\n"
+        body = f"""convertToMeters 1;
+vertices
+(
+    (0 {y0!r} 0) ({c!r} {y0!r} {-sn!r}) ({c!r} {y1!r} {-sn!r}) (0 {y1!r} 0)
+    ({c!r} {y0!r} {sn!r}) ({c!r} {y1!r} {sn!r})
+);
+blocks ( hex (0 1 2 3 0 4 5 3) ({self.nx} {self.ny} 1) simpleGrading (1 1 1) );
+edges ();
+boundary
+(
+{bnd});
+mergePatchPairs ();
+"""
+        self.axisymmetric = True
+        dictionary(case, "system/blockMeshDict", body)
+
     def block_mesh(self, case, patches=None):
         """patches: dict side->(name, type) for sides left/right/bottom/top; default all 'walls' wall."""
         p = {"left": ("walls", "wall"), "right": ("walls", "wall"),
@@ -87,10 +126,16 @@ def _internal(values, vector=False):
     return f"nonuniform List<scalar>\n{v.size}\n(\n{items}\n)"
 
 
-def field(case, name, dims, values, boundary, vector=False, time="0"):
-    """boundary: dict patch -> body text (e.g. 'type zeroGradient;'); frontAndBack empty is added."""
+def field(case, name, dims, values, boundary, vector=False, time="0", wedge=False):
+    """boundary: dict patch -> body text (e.g. 'type zeroGradient;'); frontAndBack empty is added
+    (wedge=True: front/back wedge and axis empty)."""
     b = dict(boundary)
-    b.setdefault("frontAndBack", "type empty;")
+    if wedge:
+        b.setdefault("front", "type wedge;")
+        b.setdefault("back", "type wedge;")
+        b.setdefault("axis", "type empty;")
+    else:
+        b.setdefault("frontAndBack", "type empty;")
     bf = "".join(f"    {k}\n    {{\n        {v}\n    }}\n" for k, v in b.items())
     body = (f"dimensions {dims};\ninternalField {_internal(values, vector)};\n"
             f"boundaryField\n{{\n{bf}}}\n")
