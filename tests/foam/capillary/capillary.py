@@ -22,7 +22,7 @@ TEST = "foam.capillary"
 M, G = fc.METAL, fc.GAS
 L, a, n = 80e-6, 40e-6, 40          # box, square side, cells per side (R/dx = 11.3)
 T0 = 2000.0
-N_SMOOTH = 4
+N_SMOOTH = 5
 t_end = 1.0e-4                      # ~5 capillary periods, spurious currents settled
 sigma = max(M["sigma0"] + M["dSigmadT"] * (T0 - M["Tsigma0"]), M["sigmaMin"])
 
