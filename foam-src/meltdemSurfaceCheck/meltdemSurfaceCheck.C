@@ -32,6 +32,12 @@ int main(int argc, char *argv[])
     argList::addOption("dict", "file", "meltdemProperties file");
     argList::addOption("alpha", "name", "metal fraction field (alpha.metal)");
     argList::addOption("T", "list", "temperatures to print sigma at");
+    argList::addOption
+    (
+        "recoil",
+        "pressure",
+        "uniform recoil pressure [Pa]: print the integral of its face force"
+    );
     argList::addBoolOption("write", "write the marangoniForce field");
 
     #include "setRootCase.H"
@@ -138,6 +144,40 @@ int main(int argc, char *argv[])
         << nl
         << "csfMagnitudeIntegral " << gSum(mag(fCSF.primitiveField())*mesh.V())
         << nl;
+
+    if (args.found("recoil"))
+    {
+        // Recoil alone (difference with and without it): must push into
+        // the metal
+        const volScalarField pRecoil
+        (
+            IOobject("pRecoil", runTime.timeName(), mesh),
+            mesh,
+            dimensionedScalar
+            (
+                "pRecoil",
+                dimPressure,
+                args.get<scalar>("recoil")
+            )
+        );
+        const volScalarField K0
+        (
+            IOobject("K0", runTime.timeName(), mesh),
+            mesh,
+            dimensionedScalar("K0", dimless/dimLength, Zero)
+        );
+        const volVectorField fR
+        (
+            fvc::reconstruct
+            (
+                forces.surfaceForce(alpha, K0, T, &pRecoil)*mesh.magSf()
+              - forces.surfaceForce(alpha, K0, T)*mesh.magSf()
+            )
+        );
+        const vector netR(gSum(fR.primitiveField()*mesh.V()));
+        Info<< "recoilIntegral " << netR.x() << ' ' << netR.y() << ' '
+            << netR.z() << nl;
+    }
 
     if (args.found("write"))
     {

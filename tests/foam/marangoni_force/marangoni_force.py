@@ -3,7 +3,8 @@
 sigma(T) of SPH eq. 8 with its lower bound, the direction and the integral of the Marangoni force
 on a flat interface (exact: the Gauss gradient telescopes, so sum(F V) = (sigma(T_right) -
 sigma(T_left)) dz), its reversal for dSigmadT > 0, its tangency on a curved interface
-(circle: integral = |dsigma/dx| pi R dz), and the dictionary checks (FatalIOError naming the entry).
+(circle: integral = |dsigma/dx| pi R dz), the recoil pressure's push into the metal, and the
+dictionary checks (FatalIOError naming the entry).
 """
 import os
 import re
@@ -50,8 +51,9 @@ def make_case(case, grid, alpha, T, TL, TR, p):
     fc.run(["blockMesh"], case, "log.blockMesh")
 
 
-def check(case, temps=None):
+def check(case, temps=None, recoil=None):
     cmd = [APP, "-write"] + (["-T", "(" + " ".join(str(t) for t in temps) + ")"] if temps else [])
+    cmd += ["-recoil", repr(recoil)] if recoil is not None else []
     fc.run(cmd, case, "log.check")
     out = open(os.path.join(case, "log.check")).read()
     res = {"sigma": {}}
@@ -63,6 +65,8 @@ def check(case, temps=None):
             res["sigma"][float(w[1])] = float(w[2])
         elif w[0] == "marangoniIntegral":
             res["integral"] = np.array([float(t) for t in w[1:4]])
+        elif w[0] == "recoilIntegral":
+            res["recoil"] = np.array([float(t) for t in w[1:4]])
         elif w[0] == "marangoniNormalFraction":
             res["normal"] = float(w[1])
         elif w[0] == "marangoniMax":
@@ -82,7 +86,8 @@ c = os.path.join(work, "flat")
 TL, TR = 2000.0, 1000.0
 make_case(c, g, flat, TL + (TR - TL) * g.x / lx, TL, TR, ST)
 temps = [300.0, 1700.0, 2500.0, 3300.0, 5000.0]
-r = check(c, temps)
+P_RECOIL = 5.4e4
+r = check(c, temps, recoil=P_RECOIL)
 err = max(abs(r["sigma"][t] - sigma_ref(t, ST)) for t in temps)
 ok &= check_absolute(TEST, "max |sigma(T) - SPH eq. 8| at T=300..5000 K [N/m]", err, 0.0, 1e-12)
 ok &= check_absolute(TEST, "sigma(5000 K) bounded by sigmaMin [N/m]", r["sigma"][5000.0], 0.2, 1e-12)
@@ -91,6 +96,9 @@ ok &= check_relative(TEST, "flat interface: integral F_x [N] = (sigma(T_cold)-si
                      r["integral"][0], ref, 1e-9)
 ok &= check_absolute(TEST, "flat interface: F_x > 0 (hot -> cold), sign of integral", np.sign(r["integral"][0]), 1.0, 0)
 ok &= check_at_most(TEST, "flat interface: |integral F_y| / |F_x|", abs(r["integral"][1]) / abs(r["integral"][0]), 1e-9)
+# recoil pressure adds interpolate(p_v) snGrad(alpha): pushes into the metal (below), p_v per area
+ok &= check_relative(TEST, "flat interface: recoil force integral F_y [N] = -p_v Lx dz (into the metal)",
+                     r["recoil"][1], -P_RECOIL * lx * g.dz, 1e-9)
 F = r["F"]
 band = np.abs(g.y - ly / 2) < g.dy
 ok &= check_at_most(TEST, "flat interface: force off the interface rows / max", np.abs(F[~band]).max() / r["max"], 1e-12)
@@ -139,6 +147,7 @@ bad = [
     ("sigma0 <= 0", "    sigma0 0;\n    dSigmadT -1e-3;\n    Tsigma0 1700;\n    sigmaMin 0;\n", "sigma0"),
     ("Tsigma0 <= 0", "    sigma0 1.8;\n    dSigmadT -1e-3;\n    Tsigma0 -5;\n    sigmaMin 0.2;\n", "Tsigma0"),
     ("sigmaMin > sigma0", "    sigma0 1.8;\n    dSigmadT -1e-3;\n    Tsigma0 1700;\n    sigmaMin 2;\n", "sigmaMin"),
+    ("nSmooth < 0", "    sigma0 1.8;\n    dSigmadT -1e-3;\n    Tsigma0 1700;\n    sigmaMin 0.2;\n    nSmooth -1;\n", "nSmooth"),
     ("dSigmadT not a number", "    sigma0 1.8;\n    dSigmadT abc;\n    Tsigma0 1700;\n    sigmaMin 0.2;\n", "dSigmadT"),
 ]
 c = os.path.join(work, "flat")
