@@ -23,7 +23,7 @@ res = {}
 for Tsub in (1500.0, 500.0):
     case = os.path.join(work, f"sub{int(Tsub)}")
     args = argparse.Namespace(case=case, Tsub=Tsub, dx=2e-6, radius=60e-6, height=100e-6, end=1.0e-4,
-                              write=2.5e-6, nsmooth=2)
+                              write=2.5e-6, nsmooth=2, base="Tsub")
     mjt_case.build(args)
     mjt_case.run(case)
     res[Tsub] = mjt_case.depth(case)
