@@ -1,0 +1,167 @@
+/*---------------------------------------------------------------------------*\
+    MeltDEM: meltdemFoam
+
+Description
+    Melt-pool solver: two incompressible immiscible phases, metal and gas, with
+    interFoam's VOF (MULES, PIMPLE) so that metal mass is conserved to
+    round-off, plus what a powder-AM melt pool needs, each term switched on in
+    constant/meltdemProperties only when a scene needs it:
+      - energy in enthalpy form, latent heat between solidus and liquidus,
+        liquid fraction (thesis eq. 2.5-2.7 mixture properties);
+      - Darcy/Carman-Kozeny sink in solid and mushy metal (thesis eq. 2.10);
+      - CSF surface tension with sigma(T), Marangoni force, recoil pressure;
+      - Gaussian laser deposited at the interface, evaporation heat loss;
+      - Boussinesq buoyancy.
+    With every term off it is interFoam (surface tension then comes from
+    transportProperties' sigma, as there).
+
+\*---------------------------------------------------------------------------*/
+
+#include "fvCFD.H"
+#include "dynamicFvMesh.H"
+#include "CMULES.H"
+#include "EulerDdtScheme.H"
+#include "localEulerDdtScheme.H"
+#include "CrankNicolsonDdtScheme.H"
+#include "subCycle.H"
+#include "immiscibleIncompressibleTwoPhaseMixture.H"
+#include "turbulentTransportModel.H"
+#include "pimpleControl.H"
+#include "fvOptions.H"
+#include "CorrectPhi.H"
+#include "fvcSmooth.H"
+
+#include "meltdemProperties.H"
+#include "surfaceForces.H"
+#include "meltdemSolverModels.H"
+
+// * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * //
+
+int main(int argc, char *argv[])
+{
+    argList::addNote
+    (
+        "Melt-pool solver for powder additive manufacturing: VOF metal/gas,"
+        " melting and solidification, surface forces, laser, evaporation."
+    );
+
+    #include "postProcess.H"
+
+    #include "addCheckCaseOptions.H"
+    #include "setRootCaseLists.H"
+    #include "createTime.H"
+    #include "createDynamicFvMesh.H"
+    #include "initContinuityErrs.H"
+    #include "createDyMControls.H"
+    #include "createFields.H"
+    #include "createMeltdemFields.H"
+    #include "createAlphaFluxes.H"
+    #include "initCorrectPhi.H"
+    #include "createUfIfPresent.H"
+
+    turbulence->validate();
+
+    if (!LTS)
+    {
+        #include "CourantNo.H"
+        #include "setInitialDeltaT.H"
+    }
+
+    Info<< "\nStarting time loop\n" << endl;
+
+    while (runTime.run())
+    {
+        #include "readDyMControls.H"
+
+        if (LTS)
+        {
+            #include "setRDeltaT.H"
+        }
+        else
+        {
+            #include "CourantNo.H"
+            #include "alphaCourantNo.H"
+            #include "setDeltaT.H"
+        }
+
+        ++runTime;
+
+        Info<< "Time = " << runTime.timeName() << nl << endl;
+
+        if (!physics.flow)
+        {
+            // conduction only: the phases stay where they are
+            #include "TEqn.H"
+        }
+
+        while (physics.flow && pimple.loop())
+        {
+            if (pimple.firstIter() || moveMeshOuterCorrectors)
+            {
+                mesh.update();
+
+                if (mesh.changing())
+                {
+                    if (mesh.topoChanging())
+                    {
+                        talphaPhi1Corr0.clear();
+                    }
+
+                    gh = (g & mesh.C()) - ghRef;
+                    ghf = (g & mesh.Cf()) - ghRef;
+
+                    MRF.update();
+
+                    if (correctPhi)
+                    {
+                        phi = mesh.Sf() & Uf();
+
+                        #include "correctPhi.H"
+
+                        fvc::makeRelative(phi, U);
+
+                        mixture.correct();
+                    }
+
+                    if (checkMeshCourantNo)
+                    {
+                        #include "meshCourantNo.H"
+                    }
+                }
+            }
+
+            #include "alphaControls.H"
+            #include "alphaEqnSubCycle.H"
+
+            mixture.correct();
+
+            // energy with the same metal fluxes that moved alpha
+            #include "TEqn.H"
+
+            if (pimple.frozenFlow())
+            {
+                continue;
+            }
+
+            #include "UEqn.H"
+
+            while (pimple.correct())
+            {
+                #include "pEqn.H"
+            }
+
+            if (pimple.turbCorr())
+            {
+                turbulence->correct();
+            }
+        }
+
+        runTime.write();
+
+        runTime.printExecutionTime(Info);
+    }
+
+    Info<< "End\n" << endl;
+
+    return 0;
+}
