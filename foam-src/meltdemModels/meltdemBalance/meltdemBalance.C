@@ -1,0 +1,568 @@
+/*---------------------------------------------------------------------------*\
+  MeltDEM: meltdemBalance function object (see meltdemBalance.H)
+\*---------------------------------------------------------------------------*/
+
+#include "meltdemBalance.H"
+#include "volFields.H"
+#include "surfaceFields.H"
+#include "uniformDimensionedFields.H"
+#include "emptyPolyPatch.H"
+#include "IOdictionary.H"
+#include "Time.H"
+#include "addToRunTimeSelectionTable.H"
+
+// * * * * * * * * * * * * * * Static Data Members * * * * * * * * * * * * * //
+
+namespace Foam
+{
+namespace functionObjects
+{
+    defineTypeNameAndDebug(meltdemBalance, 0);
+    addToRunTimeSelectionTable(functionObject, meltdemBalance, dictionary);
+}
+}
+
+
+// * * * * * * * * * * * * * Private Member Functions  * * * * * * * * * * * //
+
+void Foam::functionObjects::meltdemBalance::readProperties()
+{
+    IOdictionary transport
+    (
+        IOobject
+        (
+            "transportProperties",
+            mesh_.time().constant(),
+            mesh_,
+            IOobject::MUST_READ,
+            IOobject::NO_WRITE,
+            false
+        )
+    );
+    const wordList phases(transport.get<wordList>("phases"));
+    if (phases.size() != 2)
+    {
+        FatalIOErrorInFunction(transport)
+            << "phases: two phases (metal gas) expected, got " << phases
+            << exit(FatalIOError);
+    }
+    metalName_ = phases[0];
+    gasName_ = phases[1];
+    const dictionary& m = transport.subDict(metalName_);
+    const dictionary& g = transport.subDict(gasName_);
+    rhoM_ = dimensionedScalar("rho", dimDensity, m).value();
+    rhoG_ = dimensionedScalar("rho", dimDensity, g).value();
+    nuM_ = m.found("nu") ? dimensionedScalar("nu", dimViscosity, m).value() : 0;
+    nuG_ = g.found("nu") ? dimensionedScalar("nu", dimViscosity, g).value() : 0;
+
+    // Thermal data are optional: without them the enthalpy columns are left out
+    IOobject propsIO
+    (
+        "meltdemProperties",
+        mesh_.time().constant(),
+        mesh_,
+        IOobject::MUST_READ,
+        IOobject::NO_WRITE,
+        false
+    );
+    hasThermo_ = propsIO.typeHeaderOk<IOdictionary>(true);
+    if (hasThermo_)
+    {
+        IOdictionary props(propsIO);
+        const dictionary& pm = props.subDict("metal");
+        const dictionary& pg = props.subDict("gas");
+        const dimensionSet dimCp(dimEnergy/dimMass/dimTemperature);
+        const dimensionSet dimK(dimPower/dimLength/dimTemperature);
+        cpM_ = dimensionedScalar("cp", dimCp, pm).value();
+        kM_ = dimensionedScalar("k", dimK, pm).value();
+        L_ = dimensionedScalar("L", dimEnergy/dimMass, pm).value();
+        Ts_ = dimensionedScalar("Tsolidus", dimTemperature, pm).value();
+        Tl_ = dimensionedScalar("Tliquidus", dimTemperature, pm).value();
+        cpG_ = dimensionedScalar("cp", dimCp, pg).value();
+        kG_ = dimensionedScalar("k", dimK, pg).value();
+        if (Ts_ > Tl_)
+        {
+            FatalIOErrorInFunction(pm)
+                << "Tsolidus " << Ts_ << " > Tliquidus " << Tl_
+                << exit(FatalIOError);
+        }
+    }
+}
+
+
+Foam::tmp<Foam::scalarField>
+Foam::functionObjects::meltdemBalance::alphaCells() const
+{
+    if (foundObject<volScalarField>(alphaName_))
+    {
+        return tmp<scalarField>
+        (
+            new scalarField
+            (
+                lookupObject<volScalarField>(alphaName_).primitiveField()
+            )
+        );
+    }
+    return tmp<scalarField>(new scalarField(mesh_.nCells(), 1.0));
+}
+
+
+Foam::scalar Foam::functionObjects::meltdemBalance::fl(const scalar T) const
+{
+    if (T >= Tl_) return 1;
+    if (T <= Ts_) return 0;
+    return (T - Ts_)/(Tl_ - Ts_);
+}
+
+
+void Foam::functionObjects::meltdemBalance::stored
+(
+    scalar& M,
+    scalar& H,
+    vector& P
+) const
+{
+    const scalarField& V = mesh_.V();
+    const tmp<scalarField> ta = alphaCells();
+    const scalarField& a = ta();
+
+    M = gSum(rhoM_*a*V);
+
+    H = 0;
+    if (energy_)
+    {
+        const scalarField& T = lookupObject<volScalarField>(TName_);
+        scalarField f(T.size());
+        if (foundObject<volScalarField>(fLName_))
+        {
+            f = lookupObject<volScalarField>(fLName_).primitiveField();
+        }
+        else
+        {
+            forAll(T, i) { f[i] = fl(T[i]); }
+        }
+        const scalarField C(a*rhoM_*cpM_ + (1 - a)*rhoG_*cpG_);
+        H = gSum((C*T + a*rhoM_*L_*f)*V);
+    }
+
+    P = Zero;
+    if (momentum_)
+    {
+        const vectorField& U = lookupObject<volVectorField>(UName_);
+        P = gSum((a*rhoM_ + (1 - a)*rhoG_)*V*U);
+    }
+}
+
+
+void Foam::functionObjects::meltdemBalance::start()
+{
+    energy_ = hasThermo_ && foundObject<volScalarField>(TName_);
+    momentum_ = foundObject<volVectorField>(UName_);
+    laser_ = energy_ && foundObject<volScalarField>(laserName_);
+    evap_ = energy_ && foundObject<volScalarField>(evapName_);
+
+    stored(M0_, H0_, P0_);
+    started_ = true;
+    lastIndex_ = time_.timeIndex();
+
+    if (log)
+    {
+        Info<< type() << " " << name() << ": alpha "
+            << (foundObject<volScalarField>(alphaName_)
+                ? string(alphaName_) : string("none (all metal)"))
+            << ", enthalpy " << (energy_ ? "on" : "off")
+            << ", momentum " << (momentum_ ? "on" : "off")
+            << ", laser " << (laser_ ? "on" : "off")
+            << ", evaporation " << (evap_ ? "on" : "off") << nl;
+    }
+
+    if (!Pstream::master()) return;
+
+    const fileName dir
+    (
+        time_.globalPath()/functionObject::outputPrefix/name()
+       /time_.timeName()
+    );
+    mkDir(dir);
+    fileName file(dir/"balance.csv");
+    if (isFile(file))
+    {
+        file = dir/("balance_" + time_.timeName() + ".csv");
+    }
+    os_.reset(new OFstream(file));
+    OFstream& os = os_();
+    os.precision(15);
+
+    const char* xyz[3] = {"_x", "_y", "_z"};
+    os  << "time,deltaT,metalMass";
+    if (energy_) os << ",enthalpy";
+    if (momentum_) for (int c = 0; c < 3; ++c) os << ",momentum" << xyz[c];
+    if (laser_) os << ",laserPower";
+    if (evap_) os << ",evaporationPower";
+    forAll(patches_, pi)
+    {
+        const word& pn = mesh_.boundaryMesh()[patches_[pi]].name();
+        os << ",massIn_" << pn;
+        if (energy_) os << ",enthalpyAdvIn_" << pn << ",enthalpyCondIn_" << pn;
+        if (momentum_)
+        {
+            for (int c = 0; c < 3; ++c) os << ",momentumIn_" << pn << xyz[c];
+        }
+    }
+    os << ",massIn_cum";
+    if (energy_) os << ",enthalpyIn_cum";
+    if (laser_) os << ",laserEnergy_cum";
+    if (evap_) os << ",evaporationEnergy_cum";
+    if (momentum_)
+    {
+        for (int c = 0; c < 3; ++c) os << ",momentumIn_cum" << xyz[c];
+        for (int c = 0; c < 3; ++c) os << ",gravityImpulse_cum" << xyz[c];
+    }
+    os << ",massError,massErrorRel";
+    if (energy_) os << ",enthalpyError,enthalpyErrorRel";
+    if (momentum_)
+    {
+        for (int c = 0; c < 3; ++c) os << ",momentumError" << xyz[c];
+        os << ",momentumErrorRel";
+    }
+    os << nl;
+
+    // the start state as first row, flows zero
+    const label nPer = 1 + (energy_ ? 2 : 0) + (momentum_ ? 3 : 0);
+    scalar laserP = 0, evapP = 0;
+    sources(laserP, evapP);
+    writeRow
+    (
+        0, M0_, H0_, P0_, laserP, evapP, scalarList(nPer*patches_.size(), 0.0),
+        0, 0, 0, 0, Zero, 0
+    );
+}
+
+
+Foam::vector Foam::functionObjects::meltdemBalance::gravity() const
+{
+    // solvers register g on Time (meshObjects::gravity), older ones on the mesh
+    typedef uniformDimensionedVectorField gField;
+    if (time_.foundObject<gField>("g"))
+    {
+        return time_.lookupObject<gField>("g").value();
+    }
+    if (foundObject<gField>("g"))
+    {
+        return lookupObject<gField>("g").value();
+    }
+    IOobject gIO
+    (
+        "g",
+        time_.constant(),
+        mesh_,
+        IOobject::MUST_READ,
+        IOobject::NO_WRITE,
+        false
+    );
+    if (gIO.typeHeaderOk<gField>(true))
+    {
+        return gField(gIO).value();
+    }
+    return Zero;
+}
+
+
+void Foam::functionObjects::meltdemBalance::sources
+(
+    scalar& laserP,
+    scalar& evapP
+) const
+{
+    const scalarField& V = mesh_.V();
+    laserP = 0;
+    evapP = 0;
+    if (laser_ && foundObject<volScalarField>(laserName_))
+    {
+        laserP = gSum(lookupObject<volScalarField>(laserName_).primitiveField()*V);
+    }
+    if (evap_ && foundObject<volScalarField>(evapName_))
+    {
+        evapP = gSum(lookupObject<volScalarField>(evapName_).primitiveField()*V);
+    }
+}
+
+
+void Foam::functionObjects::meltdemBalance::writeRow
+(
+    const scalar dt,
+    const scalar M,
+    const scalar H,
+    const vector& P,
+    const scalar laserP,
+    const scalar evapP,
+    const UList<scalar>& patchCols,
+    const scalar massErr,
+    const scalar massRel,
+    const scalar HErr,
+    const scalar HRel,
+    const vector& PErr,
+    const scalar PRel
+)
+{
+    if (!Pstream::master() || !os_.valid()) return;
+
+    OFstream& os = os_();
+    os << time_.value() << ',' << dt << ',' << M;
+    if (energy_) os << ',' << H;
+    if (momentum_) os << ',' << P.x() << ',' << P.y() << ',' << P.z();
+    if (laser_) os << ',' << laserP;
+    if (evap_) os << ',' << evapP;
+    forAll(patchCols, i) os << ',' << patchCols[i];
+    os << ',' << massIn_;
+    if (energy_) os << ',' << enthalpyIn_;
+    if (laser_) os << ',' << laserE_;
+    if (evap_) os << ',' << evapE_;
+    if (momentum_)
+    {
+        for (direction c = 0; c < 3; ++c) os << ',' << momentumIn_[c];
+        for (direction c = 0; c < 3; ++c) os << ',' << gravityImp_[c];
+    }
+    os << ',' << massErr << ',' << massRel;
+    if (energy_) os << ',' << HErr << ',' << HRel;
+    if (momentum_)
+    {
+        for (direction c = 0; c < 3; ++c) os << ',' << PErr[c];
+        os << ',' << PRel;
+    }
+    os << endl;
+}
+
+
+// * * * * * * * * * * * * * * * * Constructors  * * * * * * * * * * * * * * //
+
+Foam::functionObjects::meltdemBalance::meltdemBalance
+(
+    const word& name,
+    const Time& runTime,
+    const dictionary& dict
+)
+:
+    fvMeshFunctionObject(name, runTime, dict),
+    rhoM_(0), rhoG_(0), nuM_(0), nuG_(0),
+    hasThermo_(false),
+    cpM_(0), cpG_(0), kM_(0), kG_(0), L_(0), Ts_(0), Tl_(0),
+    energy_(false), momentum_(false), laser_(false), evap_(false),
+    started_(false),
+    M0_(0), H0_(0), P0_(Zero),
+    massIn_(0), enthalpyIn_(0), laserE_(0), evapE_(0), enthalpyAbs_(0),
+    momentumIn_(Zero), gravityImp_(Zero), momentumAbs_(0),
+    lastIndex_(-1)
+{
+    readProperties();
+    read(dict);
+
+    DynamicList<label> ids;
+    forAll(mesh_.boundaryMesh(), patchi)
+    {
+        const polyPatch& pp = mesh_.boundaryMesh()[patchi];
+        if (!pp.coupled() && !isA<emptyPolyPatch>(pp)) ids.append(patchi);
+    }
+    patches_.transfer(ids);
+
+    // The solver's fields exist when function objects are constructed (first
+    // runTime.run()); otherwise start at the first execute.
+    if
+    (
+        foundObject<volScalarField>(alphaName_)
+     || foundObject<volScalarField>(TName_)
+     || foundObject<volVectorField>(UName_)
+    )
+    {
+        start();
+    }
+}
+
+
+// * * * * * * * * * * * * * * * Member Functions  * * * * * * * * * * * * * //
+
+bool Foam::functionObjects::meltdemBalance::read(const dictionary& dict)
+{
+    fvMeshFunctionObject::read(dict);
+    alphaName_ = dict.getOrDefault<word>("alpha", "alpha." + metalName_);
+    TName_ = dict.getOrDefault<word>("T", "T");
+    UName_ = dict.getOrDefault<word>("U", "U");
+    phiName_ = dict.getOrDefault<word>("phi", "phi");
+    pName_ = dict.getOrDefault<word>("p", "p");
+    fLName_ = dict.getOrDefault<word>("liquidFraction", "liquidFraction");
+    laserName_ = dict.getOrDefault<word>("laserHeatSource", "laserHeatSource");
+    evapName_ =
+        dict.getOrDefault<word>("evaporationHeatLoss", "evaporationHeatLoss");
+    return true;
+}
+
+
+bool Foam::functionObjects::meltdemBalance::execute()
+{
+    if (!started_)
+    {
+        start();
+        return true;
+    }
+    // once per time step (execute may be called again at the end of the run)
+    if (time_.timeIndex() == lastIndex_) return true;
+    lastIndex_ = time_.timeIndex();
+
+    const scalar dt = time_.deltaTValue();
+    const scalarField& V = mesh_.V();
+    const tmp<scalarField> ta = alphaCells();
+    const scalarField& a = ta();
+
+    const bool hasAlpha = foundObject<volScalarField>(alphaName_);
+    const volScalarField* alphaPtr =
+        hasAlpha ? &lookupObject<volScalarField>(alphaName_) : nullptr;
+    const word alphaPhiName("alphaPhi0." + metalName_);
+    const surfaceScalarField* phiPtr =
+        foundObject<surfaceScalarField>(phiName_)
+      ? &lookupObject<surfaceScalarField>(phiName_) : nullptr;
+    const surfaceScalarField* alphaPhiPtr =
+        foundObject<surfaceScalarField>(alphaPhiName)
+      ? &lookupObject<surfaceScalarField>(alphaPhiName) : nullptr;
+    const surfaceScalarField* rhoPhiPtr =
+        foundObject<surfaceScalarField>("rhoPhi")
+      ? &lookupObject<surfaceScalarField>("rhoPhi") : nullptr;
+    const volScalarField* TPtr =
+        energy_ ? &lookupObject<volScalarField>(TName_) : nullptr;
+    const volScalarField* fLPtr =
+        energy_ && foundObject<volScalarField>(fLName_)
+      ? &lookupObject<volScalarField>(fLName_) : nullptr;
+    const volVectorField* UPtr =
+        momentum_ ? &lookupObject<volVectorField>(UName_) : nullptr;
+    const volScalarField* pPtr =
+        momentum_ && foundObject<volScalarField>(pName_)
+      ? &lookupObject<volScalarField>(pName_) : nullptr;
+
+    scalar M, H; vector P;
+    stored(M, H, P);
+
+    scalar laserP = 0, evapP = 0;
+    sources(laserP, evapP);
+    vector gravityF(Zero);
+    if (momentum_)
+    {
+        gravityF = gSum((a*rhoM_ + (1 - a)*rhoG_)*V)*gravity();
+    }
+
+    // per-patch flows into the domain
+    DynamicList<scalar> patchCols;
+    scalar massStep = 0, enthalpyStep = 0, enthalpyAbsStep = 0;
+    vector momentumStep(Zero);
+    scalar momentumAbsStep = 0;
+    forAll(patches_, pi)
+    {
+        const label patchi = patches_[pi];
+        const fvPatch& fp = mesh_.boundary()[patchi];
+        const label n = fp.size();
+        const scalarField ab
+        (
+            alphaPtr ? scalarField(alphaPtr->boundaryField()[patchi])
+                     : scalarField(n, 1.0)
+        );
+        const scalarField phib
+        (
+            phiPtr ? scalarField(phiPtr->boundaryField()[patchi])
+                   : scalarField(n, 0.0)
+        );
+        const scalarField aphib
+        (
+            alphaPhiPtr ? scalarField(alphaPhiPtr->boundaryField()[patchi])
+                        : scalarField(phib*ab)
+        );
+
+        const scalar mIn = -gSum(rhoM_*aphib);
+        patchCols.append(mIn);
+        massStep += mIn;
+
+        if (energy_)
+        {
+            const fvPatchScalarField& Tb = TPtr->boundaryField()[patchi];
+            scalarField fb(n);
+            if (fLPtr)
+            {
+                fb = fLPtr->boundaryField()[patchi];
+            }
+            else
+            {
+                forAll(fb, i) { fb[i] = fl(Tb[i]); }
+            }
+            const scalar advIn = -gSum
+            (
+                (aphib*rhoM_*cpM_ + (phib - aphib)*rhoG_*cpG_)*Tb
+              + aphib*rhoM_*L_*fb
+            );
+            const scalarField kb(ab*kM_ + (1 - ab)*kG_);
+            const scalar condIn = gSum(kb*Tb.snGrad()*fp.magSf());
+            patchCols.append(advIn);
+            patchCols.append(condIn);
+            enthalpyStep += advIn + condIn;
+            enthalpyAbsStep += mag(advIn) + mag(condIn);
+        }
+
+        if (momentum_)
+        {
+            const fvPatchVectorField& Ub = UPtr->boundaryField()[patchi];
+            const scalarField rhob(ab*rhoM_ + (1 - ab)*rhoG_);
+            const scalarField rhoPhib
+            (
+                rhoPhiPtr ? scalarField(rhoPhiPtr->boundaryField()[patchi])
+                          : scalarField(rhob*phib)
+            );
+            const scalarField mub(ab*rhoM_*nuM_ + (1 - ab)*rhoG_*nuG_);
+            vector mom = -gSum(rhoPhib*Ub) + gSum(mub*fp.magSf()*Ub.snGrad());
+            if (pPtr)
+            {
+                mom -= gSum(pPtr->boundaryField()[patchi]*fp.Sf());
+            }
+            for (direction c = 0; c < 3; ++c) patchCols.append(mom[c]);
+            momentumStep += mom;
+            momentumAbsStep += mag(mom);
+        }
+    }
+
+    massIn_ += dt*massStep;
+    enthalpyIn_ += dt*enthalpyStep;
+    laserE_ += dt*laserP;
+    evapE_ += dt*evapP;
+    enthalpyAbs_ += dt*(enthalpyAbsStep + mag(laserP) + mag(evapP));
+    momentumIn_ += dt*momentumStep;
+    gravityImp_ += dt*gravityF;
+    momentumAbs_ += dt*(momentumAbsStep + mag(gravityF));
+
+    const scalar massErr = (M - M0_) - massIn_;
+    const scalar massRel = massErr/max(mag(M0_), VSMALL);
+    const scalar HErr = (H - H0_) - enthalpyIn_ - laserE_ + evapE_;
+    const scalar HRel =
+        HErr/max(max(mag(H - H0_), enthalpyAbs_), max(1e-15*mag(H0_), VSMALL));
+    const vector PErr = (P - P0_) - momentumIn_ - gravityImp_;
+    const scalar PRel = mag(PErr)/max(max(mag(P - P0_), momentumAbs_), VSMALL);
+
+    if (log)
+    {
+        Info<< type() << " " << name() << ": metal mass " << M
+            << " rel. error " << massRel;
+        if (energy_) Info<< ", enthalpy " << H << " rel. error " << HRel;
+        if (momentum_) Info<< ", momentum rel. error " << PRel;
+        Info<< nl;
+    }
+
+    writeRow
+    (
+        dt, M, H, P, laserP, evapP, patchCols,
+        massErr, massRel, HErr, HRel, PErr, PRel
+    );
+    return true;
+}
+
+
+bool Foam::functionObjects::meltdemBalance::write()
+{
+    return true;
+}
+
+
+// ************************************************************************* //
