@@ -41,9 +41,8 @@ meltdemProperties::meltdemProperties(const fvMesh& mesh)
     gas_(),
     darcyC_(0),
     darcyB_(1),
-    nEnergyCorr_(20),
-    energyTolerance_(1e-9),
-    energyRelax_(1),
+    nEnergyCorr_(10),
+    energyTolerance_(1e-8),
     isothermalT_(300)
 {
     if (!found("physics"))
@@ -126,11 +125,10 @@ meltdemProperties::meltdemProperties(const fvMesh& mesh)
             const dictionary& ec = subDict("energyControls");
             nEnergyCorr_ = ec.getOrDefault<label>("nCorrectors", nEnergyCorr_);
             energyTolerance_ = ec.getOrDefault<scalar>("tolerance", energyTolerance_);
-            energyRelax_ = ec.getOrDefault<scalar>("relax", energyRelax_);
-            if (nEnergyCorr_ < 1 || energyTolerance_ <= 0 || energyRelax_ <= 0 || energyRelax_ > 1)
+            if (nEnergyCorr_ < 1 || energyTolerance_ <= 0)
             {
                 FatalIOErrorInFunction(ec)
-                    << "energyControls: nCorrectors >= 1, tolerance > 0, 0 < relax <= 1 required"
+                    << "energyControls: nCorrectors >= 1 and tolerance > 0 required"
                     << exit(FatalIOError);
             }
         }
