@@ -65,7 +65,17 @@ void Foam::functionObjects::meltdemBalance::readProperties()
         IOobject::NO_WRITE,
         false
     );
-    hasThermo_ = propsIO.typeHeaderOk<IOdictionary>(true);
+    hasThermo_ = false;
+    if (propsIO.typeHeaderOk<IOdictionary>(true))
+    {
+        IOdictionary props(propsIO);
+        // thermal data only where the energy equation runs (meltdemFoam reads
+        // metal{} and gas{} only then)
+        const bool energyOn =
+            !props.isDict("physics")
+         || props.subDict("physics").getOrDefault<bool>("energy", false);
+        hasThermo_ = energyOn && props.isDict("metal") && props.isDict("gas");
+    }
     if (hasThermo_)
     {
         IOdictionary props(propsIO);
@@ -141,7 +151,13 @@ void Foam::functionObjects::meltdemBalance::stored
         {
             forAll(T, i) { f[i] = fl(T[i]); }
         }
-        const scalarField C(a*rhoM_*cpM_ + (1 - a)*rhoG_*cpG_);
+        // the solver's heat capacity per volume when registered (any model of it)
+        const scalarField C
+        (
+            foundObject<volScalarField>("rhoCp")
+          ? scalarField(lookupObject<volScalarField>("rhoCp").primitiveField())
+          : scalarField(a*rhoM_*cpM_ + (1 - a)*rhoG_*cpG_)
+        );
         H = gSum((C*T + a*rhoM_*L_*f)*V);
     }
 
@@ -431,6 +447,9 @@ bool Foam::functionObjects::meltdemBalance::execute()
     const volScalarField* fLPtr =
         energy_ && foundObject<volScalarField>(fLName_)
       ? &lookupObject<volScalarField>(fLName_) : nullptr;
+    const volScalarField* kappaPtr =
+        energy_ && foundObject<volScalarField>("kappa")
+      ? &lookupObject<volScalarField>("kappa") : nullptr;
     const volVectorField* UPtr =
         momentum_ ? &lookupObject<volVectorField>(UName_) : nullptr;
     const volScalarField* pPtr =
@@ -495,7 +514,13 @@ bool Foam::functionObjects::meltdemBalance::execute()
                 (aphib*rhoM_*cpM_ + (phib - aphib)*rhoG_*cpG_)*Tb
               + aphib*rhoM_*L_*fb
             );
-            const scalarField kb(ab*kM_ + (1 - ab)*kG_);
+            // the solver's conductivity when registered (its face value on a
+            // boundary is the patch value)
+            const scalarField kb
+            (
+                kappaPtr ? scalarField(kappaPtr->boundaryField()[patchi])
+                         : scalarField(ab*kM_ + (1 - ab)*kG_)
+            );
             const scalar condIn = gSum(kb*Tb.snGrad()*fp.magSf());
             patchCols.append(advIn);
             patchCols.append(condIn);
