@@ -46,10 +46,9 @@ def build(args):
     dt_cap = np.sqrt(rho_avg * args.dx ** 3 / (2 * np.pi * M["sigma0"]))
     fc.control_dict(case, "meltdemFoam", args.end, 1e-9, args.write, max_co=0.2, max_alpha_co=0.2,
                     max_dt=dt_cap)
-    fc.fv_schemes(case, extra_div="    div(rhoPhi,T) Gauss vanLeer;\n    div(rhoCpPhi,T) Gauss vanLeer;\n"
+    fc.fv_schemes(case, extra_div="    div(rhoPhi,T) Gauss vanLeer;\n"
                                   "    div(phi,T) Gauss vanLeer;\n    div(rhoPhi,h) Gauss vanLeer;\n")
-    fc.fv_solution(case, p_ref_cell=g.nx * g.ny - 1,   # closed box: reference in the top gas corner
-                   extra_solvers='    "(T|h).*" { solver PBiCGStab; preconditioner DILU; tolerance 1e-10; relTol 0; }\n')
+    fc.fv_solution(case, p_ref_cell=g.nx * g.ny - 1)   # closed box: reference in the top gas corner
     fc.transport(case, M["rho"], M["mu"] / M["rho"], G["rho"], G["mu"] / G["rho"], M["sigma0"])
     fc.gravity(case, (0.0, -9.81, 0.0))
     extra = f"""metal

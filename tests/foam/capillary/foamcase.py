@@ -177,6 +177,7 @@ divSchemes
     div(phi,alpha)  Gauss vanLeer;
     div(phirb,alpha) Gauss linear;
     div(((rho*nuEff)*dev2(T(grad(U))))) Gauss linear;
+    div(rhoCpPhi,T) Gauss vanLeer;
 {extra_div}
 }}
 laplacianSchemes {{ default Gauss linear corrected; }}
@@ -200,6 +201,7 @@ def fv_solution(case, alpha="alpha.metal", extra_solvers="", n_correctors=3, n_o
     p_rgh {{ solver PCG; preconditioner DIC; tolerance 1e-9; relTol 0.01; }}
     p_rghFinal {{ $p_rgh; relTol 0; }}
     "U.*" {{ solver smoothSolver; smoother symGaussSeidel; tolerance 1e-9; relTol 0; }}
+    "T.*" {{ solver PBiCGStab; preconditioner DILU; tolerance 1e-10; relTol 0; }}
 {extra_solvers}
 }}
 PIMPLE

@@ -38,7 +38,11 @@ def make_and_run(case, marangoni):
     fc.fv_solution(case, p_ref_cell=0)
     fc.transport(case, M["rho"], M["mu"] / M["rho"], G["rho"], G["mu"] / G["rho"], M["sigma0"])
     fc.gravity(case)
-    fc.meltdem_properties(case, physics={"marangoni": marangoni})
+    # marangoni needs the energy equation: the linear T profile is its steady solution (fixed
+    # ends, adiabatic top and bottom); solidus/liquidus below the range keep the layer liquid
+    fc.meltdem_properties(case, physics={"energy": "on", "marangoni": marangoni},
+                          extra=f"metal {{ cp {M['cp']!r}; k {M['k']!r}; L 0; Tsolidus 1000; Tliquidus 1100; }}\n"
+                                f"gas {{ cp {G['cp']!r}; k {G['k']!r}; }}\n")
     sides = {"left": "type zeroGradient;", "right": "type zeroGradient;", "walls": "type zeroGradient;"}
     fc.field(case, "alpha.metal", "[0 0 0 0 0 0 0]", (g.y < h).astype(float), sides)
     # linear in x with fixed end values: also the steady conduction solution if energy is solved
