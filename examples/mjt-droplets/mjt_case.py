@@ -128,6 +128,23 @@ def depth(case, dx=None, radius=None, height=None):
     return best
 
 
+def surface_peak(case):
+    """Peak temperature over the written times in the top row of substrate cells (its centres
+    lie dx/2 below the surface): shows that the droplet landed; the contact temperature of two
+    semi-infinite bodies of equal properties is (T_DROP + Tsub)/2."""
+    a = eval(open(os.path.join(case, "mjt.args")).read())
+    g = grid(argparse.Namespace(**a))
+    j = int(round(SUBSTRATE / g.dy)) - 1
+    peak = 0.0
+    for d in fc.time_dirs(case):
+        f = os.path.join(case, d, "T")
+        if os.path.exists(f):
+            T = fc.read_internal(f)
+            if T.ndim:
+                peak = max(peak, float(T.reshape(g.ny, g.nx)[j, :].max()))
+    return peak
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("action", choices=["build", "run", "depth", "all"])
@@ -151,6 +168,8 @@ def main():
         dep, t, r = depth(args.case)
         print(f"remelt depth {dep * 1e6:.2f} um at t = {t * 1e3:.4f} ms, r = {r * 1e6:.1f} um "
               f"(substrate {args.Tsub:g} K; paper: ~16 um at 0.075 ms for 1500 K, none for 500 K)")
+        print(f"peak temperature of the top substrate cells {surface_peak(args.case):.0f} K "
+              f"(contact temperature estimate {(T_DROP + args.Tsub) / 2:.0f} K)")
 
 
 if __name__ == "__main__":
