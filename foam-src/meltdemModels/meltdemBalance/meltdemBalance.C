@@ -235,7 +235,7 @@ void Foam::functionObjects::meltdemBalance::start()
         for (int c = 0; c < 3; ++c) os << ",gravityImpulse_cum" << xyz[c];
     }
     os << ",massError,massErrorRel";
-    if (energy_) os << ",enthalpyError,enthalpyErrorRel";
+    if (energy_) os << ",enthalpyError,enthalpyErrorRel,enthalpyErrorRelExchanged";
     if (momentum_)
     {
         for (int c = 0; c < 3; ++c) os << ",momentumError" << xyz[c];
@@ -250,8 +250,20 @@ void Foam::functionObjects::meltdemBalance::start()
     writeRow
     (
         0, M0_, H0_, P0_, laserP, evapP, scalarList(nPer*patches_.size(), 0.0),
-        0, 0, 0, 0, Zero, 0
+        0, 0, 0, 0, 0, Zero, 0
     );
+}
+
+
+Foam::scalar Foam::functionObjects::meltdemBalance::exchangedRel
+(
+    const scalar err,
+    const scalar scale
+)
+{
+    // nothing exchanged and nothing changed: no error to speak of
+    if (scale < VSMALL) return err == 0 ? 0 : err/VSMALL;
+    return err/scale;
 }
 
 
@@ -317,6 +329,7 @@ void Foam::functionObjects::meltdemBalance::writeRow
     const scalar massRel,
     const scalar HErr,
     const scalar HRel,
+    const scalar HRelX,
     const vector& PErr,
     const scalar PRel
 )
@@ -340,7 +353,7 @@ void Foam::functionObjects::meltdemBalance::writeRow
         for (direction c = 0; c < 3; ++c) os << ',' << gravityImp_[c];
     }
     os << ',' << massErr << ',' << massRel;
-    if (energy_) os << ',' << HErr << ',' << HRel;
+    if (energy_) os << ',' << HErr << ',' << HRel << ',' << HRelX;
     if (momentum_)
     {
         for (direction c = 0; c < 3; ++c) os << ',' << PErr[c];
@@ -561,16 +574,20 @@ bool Foam::functionObjects::meltdemBalance::execute()
     const scalar massErr = (M - M0_) - massIn_;
     const scalar massRel = massErr/max(mag(M0_), VSMALL);
     const scalar HErr = (H - H0_) - enthalpyIn_ - laserE_ + evapE_;
-    const scalar HRel =
-        HErr/max(max(mag(H - H0_), enthalpyAbs_), max(1e-15*mag(H0_), VSMALL));
+    const scalar HRel = HErr/max(mag(H0_), VSMALL);
+    const scalar HRelX = exchangedRel(HErr, max(mag(H - H0_), enthalpyAbs_));
     const vector PErr = (P - P0_) - momentumIn_ - gravityImp_;
-    const scalar PRel = mag(PErr)/max(max(mag(P - P0_), momentumAbs_), VSMALL);
+    const scalar PRel = exchangedRel(mag(PErr), max(mag(P - P0_), momentumAbs_));
 
     if (log)
     {
         Info<< type() << " " << name() << ": metal mass " << M
             << " rel. error " << massRel;
-        if (energy_) Info<< ", enthalpy " << H << " rel. error " << HRel;
+        if (energy_)
+        {
+            Info<< ", enthalpy " << H << " rel. error " << HRel
+                << " (" << HRelX << " of the heat exchanged)";
+        }
         if (momentum_) Info<< ", momentum rel. error " << PRel;
         Info<< nl;
     }
@@ -578,7 +595,7 @@ bool Foam::functionObjects::meltdemBalance::execute()
     writeRow
     (
         dt, M, H, P, laserP, evapP, patchCols,
-        massErr, massRel, HErr, HRel, PErr, PRel
+        massErr, massRel, HErr, HRel, HRelX, PErr, PRel
     );
     return true;
 }

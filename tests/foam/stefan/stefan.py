@@ -128,7 +128,7 @@ def main():
     # enthalpy balance of the conduction run (meltdemBalance)
     for nx, r in res.items():
         b = r[4]
-        rel = float(np.max(np.abs(b["enthalpyErrorRel"])))
+        rel = float(np.max(np.abs(b["enthalpyErrorRelExchanged"][1:])))
         q = float(b["enthalpyIn_cum"][-1])
         dH = float(b["enthalpy"][-1] - b["enthalpy"][0])
         print(f"nx {nx}: heat in through the hot wall {q:.6g} J, stored-enthalpy change {dH:.6g} J, "
