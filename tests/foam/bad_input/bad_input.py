@@ -1,0 +1,127 @@
+#!/usr/bin/env python3
+"""Bad input to meltdemFoam stops with an OpenFOAM FatalIOError whose text names the entry.
+
+A tiny 1D conduction case (5 cells, physics { flow off; energy on; }) that runs cleanly is
+broken one entry at a time in constant/meltdemProperties. Each variant must end with a non-zero
+exit code that is not a signal (no segfault, no floating-point trap), print 'FOAM FATAL IO ERROR'
+and name the offending entry; the clean case must run to the end (so a variant cannot pass by
+breaking something else).
+usage: bad_input.py [--keep]
+"""
+import os
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+
+import numpy as np
+
+src = os.environ["MELTDEM_SOURCE_DIR"]
+sys.path.insert(0, os.path.join(src, "tests", "support"))
+sys.path.insert(0, os.path.join(src, "tests", "foam", "capillary"))
+from meltdem_report import report  # noqa: E402
+import foamcase as fc  # noqa: E402
+
+TEST = "foam.bad_input"
+METAL = "metal { Tsolidus 1700; Tliquidus 1710; L 2.7e5; cp 965; k 35.95; }\n"
+GAS = "gas { cp 10; k 0.026; }\n"
+PHYSICS = {"flow": "off", "energy": "on", "surfaceTension": "off"}
+
+# name -> (what is wrong, physics overrides, metal text, gas text, extra text, words the message must hold)
+VARIANTS = {
+    "solidus_above_liquidus": ("Tsolidus 1800 > Tliquidus 1710", {},
+                               METAL.replace("Tsolidus 1700", "Tsolidus 1800"), GAS, "",
+                               ["Tsolidus", "Tliquidus"]),
+    "negative_conductivity": ("metal k = -35.95", {}, METAL.replace("k 35.95", "k -35.95"), GAS, "",
+                              ["'k'"]),
+    "negative_gas_conductivity": ("gas k = -0.026", {}, METAL, GAS.replace("k 0.026", "k -0.026"), "",
+                                  ["'k'", "gas"]),
+    "missing_cp": ("metal cp missing", {}, METAL.replace("cp 965; ", ""), GAS, "", ["'cp'"]),
+    "missing_latent_heat": ("metal L missing", {}, METAL.replace("L 2.7e5; ", ""), GAS, "", ["'L'"]),
+    "negative_latent_heat": ("metal L = -2.7e5", {}, METAL.replace("L 2.7e5", "L -2.7e5"), GAS, "",
+                             ["'L'"]),
+    "missing_gas_dict": ("no gas sub-dictionary", {}, METAL, "", "", ["'gas'"]),
+    "unknown_switch": ("physics { flw on; }", {"flw": "on"}, METAL, GAS, "", ["'flw'"]),
+    "missing_darcy_C": ("darcy on, darcy { b 1e-3; } (no C)", {"flow": "on", "darcy": "on"}, METAL, GAS,
+                        "darcy { b 1e-3; }\n", ["'C'"]),
+}
+
+
+def build(case, physics, metal, gas, extra):
+    nx = 5
+    g = fc.Grid2D(1e-3, 2e-4, nx, 1, dz=2e-4)
+    g.block_mesh(case, patches={"left": ("hot", "patch"), "right": ("cold", "patch"),
+                                "bottom": ("sides", "empty"), "top": ("sides", "empty")})
+    zg = "type zeroGradient;"
+    b = {"hot": zg, "cold": zg, "sides": "type empty;"}
+    fc.field(case, "alpha.metal", "[0 0 0 0 0 0 0]", np.ones(nx), b)
+    fc.field(case, "T", "[0 0 0 1 0 0 0]", np.full(nx, 1700.0),
+             dict(b, hot="type fixedValue; value uniform 1800;"))
+    fc.field(case, "U", "[0 1 -1 0 0 0 0]", np.zeros((nx, 3)),
+             dict(b, hot="type noSlip;", cold="type noSlip;"), vector=True)
+    fc.field(case, "p_rgh", "[1 -1 -2 0 0 0 0]", np.zeros(nx), b)
+    fc.transport(case, 7430.0, 6e-3 / 7430.0, 7.43, 6e-4 / 7.43, 1.8)
+    fc.gravity(case)
+    ph = dict(PHYSICS)
+    ph.update(physics)
+    fc.meltdem_properties(case, physics=ph, extra=metal + gas + extra)
+    fc.control_dict(case, "meltdemFoam", 1e-3, 1e-4, 1e-3, adjustable=False,
+                    extra="functions\n{\n    balance { type meltdemBalance; }\n}\n")
+    fc.fv_schemes(case, extra_div="    div(rhoCpPhi,T) Gauss upwind;\n")
+    fc.fv_solution(case, p_ref_cell=0, extra_solvers='    "T.*" { solver PBiCGStab; preconditioner DILU; '
+                                                     'tolerance 1e-12; relTol 0; }\n')
+    fc.run(["blockMesh"], case, "log.blockMesh")
+
+
+def run(case):
+    env = dict(os.environ)
+    env.setdefault("WM_PROJECT_DIR", "/usr/share/openfoam")
+    r = subprocess.run([fc.solver()], cwd=case, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                       env=env, timeout=120)
+    out = r.stdout.decode(errors="replace")
+    with open(os.path.join(case, "log.solver"), "w") as f:
+        f.write(out)
+    return r.returncode, out
+
+
+def fatal_text(out):
+    """The FatalIOError block: from the banner to 'FOAM exiting'."""
+    i = out.find("FOAM FATAL IO ERROR")
+    return out[i:] if i >= 0 else ""
+
+
+def main():
+    keep = "--keep" in sys.argv
+    work = tempfile.mkdtemp(prefix="bad_input.")
+    ok = True
+
+    clean = os.path.join(work, "clean")
+    build(clean, {}, METAL, GAS, "")
+    rc, out = run(clean)
+    clean_ok = rc == 0 and "End" in out
+    ok &= report(TEST, "clean tiny case runs to the end (exit code)", rc, 0, "exact", clean_ok)
+
+    for name, (what, physics, metal, gas, extra, words) in VARIANTS.items():
+        case = os.path.join(work, name)
+        build(case, physics, metal, gas, extra)
+        rc, out = run(case)
+        text = fatal_text(out)
+        signal = rc < 0 or rc >= 128 or re.search(r"Foam::sigSegv|Foam::sigFpe|printStack|Segmentation fault", out)
+        named = bool(text) and all(w in text for w in words)
+        good = rc != 0 and not signal and named
+        first = " ".join(text.split("\n")[1:3]).strip()[:140] if text else out.strip()[-140:]
+        print(f"{name}: rc {rc}; {first!r}")
+        ok &= report(TEST, f"{what}: FatalIOError naming {' '.join(words)}",
+                     f"rc {rc}, {'FatalIOError' if text else 'no FatalIOError'}, "
+                     f"{'names it' if named else 'does not name it'}",
+                     "FatalIOError naming the entry", "exact", good)
+    if ok and not keep:
+        shutil.rmtree(work)
+    else:
+        print("cases kept in", work)
+    return 0 if ok else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())
