@@ -522,9 +522,18 @@ bool Foam::functionObjects::meltdemBalance::execute()
             {
                 forAll(fb, i) { fb[i] = fl(Tb[i]); }
             }
+            // gas mass flux: from rhoPhi when registered, since the energy
+            // equation ran with the fluxes that moved alpha (phi changes after
+            // it, in the pressure correction)
+            const scalarField gasMassFlux
+            (
+                rhoPhiPtr
+              ? scalarField(rhoPhiPtr->boundaryField()[patchi] - rhoM_*aphib)
+              : scalarField((phib - aphib)*rhoG_)
+            );
             const scalar advIn = -gSum
             (
-                (aphib*rhoM_*cpM_ + (phib - aphib)*rhoG_*cpG_)*Tb
+                (aphib*rhoM_*cpM_ + gasMassFlux*cpG_)*Tb
               + aphib*rhoM_*L_*fb
             );
             // the solver's conductivity when registered (its face value on a
