@@ -1,0 +1,138 @@
+/*---------------------------------------------------------------------------*\
+    MeltDEM: evaporation recoil pressure and heat loss (see evaporationModel.H).
+\*---------------------------------------------------------------------------*/
+
+#include "evaporationModel.H"
+#include "fvc.H"
+
+const Foam::scalar Foam::meltdem::evaporationModel::recoilFactor = 0.54;
+const Foam::scalar Foam::meltdem::evaporationModel::massFlowFactor = 0.82;
+
+namespace
+{
+Foam::scalar readChecked
+(
+    const Foam::dictionary& dict,
+    const Foam::word& key,
+    const bool strictlyPositive
+)
+{
+    using namespace Foam;
+    const scalar v = dict.get<scalar>(key);
+    if (strictlyPositive ? !(v > 0) : !(v >= 0))
+    {
+        FatalIOErrorInFunction(dict)
+            << key << " (" << v << ") must be " << (strictlyPositive ? "> 0" : ">= 0")
+            << " in " << dict.name() << exit(FatalIOError);
+    }
+    return v;
+}
+}
+
+Foam::meltdem::evaporationModel::evaporationModel
+(
+    const fvMesh& mesh,
+    const dictionary& dict
+)
+:
+    mesh_(mesh),
+    pAmbient_(readChecked(dict, "pAmbient", true)),
+    CT_(readChecked(dict, "CT", true)),
+    Tboil_(readChecked(dict, "Tboil", true)),
+    hv_(readChecked(dict, "hv", false)),
+    cp_(readChecked(dict, "cp", false)),
+    Th0_(readChecked(dict, "Th0", false)),
+    CM_(readChecked(dict, "CM", true)),
+    cs_(dict.getOrDefault<scalar>("stickingCoefficient", 1))
+{
+    if (cs_ < 0 || cs_ > 1)
+    {
+        FatalIOErrorInFunction(dict)
+            << "stickingCoefficient (" << cs_ << ") must be in [0,1] in "
+            << dict.name() << exit(FatalIOError);
+    }
+    Info<< "evaporationModel: C_P = " << recoilFactor*pAmbient_ << " Pa, C_T = "
+        << CT_ << " K, T_v = " << Tboil_ << " K" << endl;
+}
+
+
+Foam::scalar Foam::meltdem::evaporationModel::pv(const scalar T) const
+{
+    // T <= 0 cannot occur physically; guard the 1/T (p_v -> 0 there)
+    const scalar Tpos = max(T, SMALL);
+    return recoilFactor*pAmbient_*exp(-CT_*(1/Tpos - 1/Tboil_));
+}
+
+
+Foam::scalar Foam::meltdem::evaporationModel::fluxLoss(const scalar T) const
+{
+    const scalar Tpos = max(T, SMALL);
+    const scalar mdot = massFlowFactor*cs_*pv(Tpos)*sqrt(CM_/Tpos);
+    // below T_h0 h(T) < 0; the loss stays >= 0 (hv dominates in practice)
+    return max(mdot*(hv_ + cp_*(Tpos - Th0_)), scalar(0));
+}
+
+
+Foam::tmp<Foam::volScalarField>
+Foam::meltdem::evaporationModel::recoilPressure(const volScalarField& T) const
+{
+    tmp<volScalarField> tp
+    (
+        new volScalarField
+        (
+            IOobject("pRecoil", T.time().timeName(), mesh_,
+                     IOobject::NO_READ, IOobject::NO_WRITE, false),
+            mesh_,
+            dimensionedScalar("zero", dimPressure, 0)
+        )
+    );
+    volScalarField& p = tp.ref();
+    forAll(p, celli)
+    {
+        p[celli] = pv(T[celli]);
+    }
+    volScalarField::Boundary& pb = p.boundaryFieldRef();
+    forAll(pb, patchi)
+    {
+        forAll(pb[patchi], facei)
+        {
+            pb[patchi][facei] = pv(T.boundaryField()[patchi][facei]);
+        }
+    }
+    return tp;
+}
+
+
+Foam::tmp<Foam::volScalarField> Foam::meltdem::evaporationModel::heatLoss
+(
+    const volScalarField& T,
+    const volScalarField& alphaMetal
+) const
+{
+    tmp<volScalarField> tq
+    (
+        new volScalarField
+        (
+            IOobject("evaporationHeatLossModel", T.time().timeName(), mesh_,
+                     IOobject::NO_READ, IOobject::NO_WRITE, false),
+            mag(fvc::grad(alphaMetal))
+        )
+    );
+    volScalarField& q = tq.ref();
+    q.dimensions().reset(dimPower/dimVolume);
+    forAll(q, celli)
+    {
+        q[celli] *= fluxLoss(T[celli]);
+    }
+    volScalarField::Boundary& qb = q.boundaryFieldRef();
+    forAll(qb, patchi)
+    {
+        forAll(qb[patchi], facei)
+        {
+            qb[patchi][facei] *= fluxLoss(T.boundaryField()[patchi][facei]);
+        }
+    }
+    return tq;
+}
+
+// ************************************************************************* //

@@ -1,0 +1,250 @@
+/*---------------------------------------------------------------------------*\
+    MeltDEM: moving Gaussian laser heat source (see laserHeatSource.H).
+\*---------------------------------------------------------------------------*/
+
+#include "laserHeatSource.H"
+#include "fvc.H"
+#include "mathematicalConstants.H"
+
+// * * * * * * * * * * * * * * * * Constructors  * * * * * * * * * * * * * * //
+
+Foam::meltdem::laserHeatSource::laserHeatSource
+(
+    const fvMesh& mesh,
+    const dictionary& dict
+)
+:
+    mesh_(mesh),
+    power_(dict.get<scalar>("power")),
+    absorptivity_(dict.get<scalar>("absorptivity")),
+    radius_(dict.get<scalar>("radius")),
+    direction_(dict.getOrDefault<vector>("direction", vector(0, 0, -1))),
+    tOn_(dict.getOrDefault<scalar>("tOn", 0)),
+    tOff_(dict.getOrDefault<scalar>("tOff", GREAT)),
+    minHitFraction_(dict.getOrDefault<scalar>("minHitFraction", 1e-3)),
+    points_(),
+    arcLength_(),
+    polyline_(dict.found("path")),
+    velocity_(Zero),
+    speed_(0),
+    tStart_(dict.getOrDefault<scalar>("tStart", 0)),
+    tStop_(dict.getOrDefault<scalar>("tStop", GREAT)),
+    absorbedPower_(0),
+    hitFraction_(0)
+{
+    if (power_ < 0)
+    {
+        FatalIOErrorInFunction(dict)
+            << "power (" << power_ << ") must be >= 0 [W] in " << dict.name()
+            << exit(FatalIOError);
+    }
+    if (absorptivity_ < 0 || absorptivity_ > 1)
+    {
+        FatalIOErrorInFunction(dict)
+            << "absorptivity (" << absorptivity_ << ") must be in [0,1] in "
+            << dict.name() << exit(FatalIOError);
+    }
+    if (!(radius_ > 0))
+    {
+        FatalIOErrorInFunction(dict)
+            << "radius (" << radius_ << ") must be > 0 [m] (1/e^2 radius) in "
+            << dict.name() << exit(FatalIOError);
+    }
+    if (mag(direction_) < VSMALL)
+    {
+        FatalIOErrorInFunction(dict)
+            << "direction " << direction_ << " must be non-zero in "
+            << dict.name() << exit(FatalIOError);
+    }
+    direction_ /= mag(direction_);
+    if (tOff_ < tOn_)
+    {
+        FatalIOErrorInFunction(dict)
+            << "tOff (" << tOff_ << ") must be >= tOn (" << tOn_ << ") in "
+            << dict.name() << exit(FatalIOError);
+    }
+    if (tStop_ < tStart_)
+    {
+        FatalIOErrorInFunction(dict)
+            << "tStop (" << tStop_ << ") must be >= tStart (" << tStart_
+            << ") in " << dict.name() << exit(FatalIOError);
+    }
+    if (minHitFraction_ < 0 || minHitFraction_ >= 1)
+    {
+        FatalIOErrorInFunction(dict)
+            << "minHitFraction (" << minHitFraction_ << ") must be in [0,1) in "
+            << dict.name() << exit(FatalIOError);
+    }
+
+    // the end of the motion: the path must stay in the mesh until then
+    const scalar tEnd = min(tStop_, tOff_);
+
+    if (polyline_)
+    {
+        if (dict.found("position") || dict.found("velocity"))
+        {
+            FatalIOErrorInFunction(dict)
+                << "path: give either path (with speed) or position (with "
+                << "velocity), not both, in " << dict.name() << exit(FatalIOError);
+        }
+        points_ = dict.get<pointField>("path");
+        speed_ = dict.get<scalar>("speed");
+        if (points_.empty())
+        {
+            FatalIOErrorInFunction(dict)
+                << "path must have at least one point in " << dict.name()
+                << exit(FatalIOError);
+        }
+        if (speed_ < 0)
+        {
+            FatalIOErrorInFunction(dict)
+                << "speed (" << speed_ << ") must be >= 0 [m/s] in "
+                << dict.name() << exit(FatalIOError);
+        }
+        arcLength_.setSize(points_.size());
+        arcLength_[0] = 0;
+        for (label i = 1; i < points_.size(); ++i)
+        {
+            arcLength_[i] = arcLength_[i-1] + mag(points_[i] - points_[i-1]);
+        }
+        forAll(points_, i)
+        {
+            checkInBounds(dict, "path", points_[i]);
+        }
+    }
+    else
+    {
+        points_.setSize(1);
+        points_[0] = dict.get<point>("position");
+        velocity_ = dict.getOrDefault<vector>("velocity", Zero);
+        checkInBounds(dict, "position", points_[0]);
+        if (mag(velocity_) > 0)
+        {
+            if (tEnd >= 0.5*GREAT)
+            {
+                FatalIOErrorInFunction(dict)
+                    << "velocity " << velocity_ << " is non-zero but neither tStop "
+                    << "nor tOff is given: the path would leave the mesh, in "
+                    << dict.name() << exit(FatalIOError);
+            }
+            checkInBounds(dict, "velocity", position(tEnd));
+        }
+    }
+
+    Info<< "laserHeatSource: P = " << power_ << " W, eta = " << absorptivity_
+        << ", 1/e^2 radius = " << radius_ << " m, direction " << direction_
+        << ", on in [" << tOn_ << ", " << tOff_ << ")"
+        << (polyline_ ? ", polyline path" : ", linear path") << endl;
+}
+
+
+// * * * * * * * * * * * * * * * Private Functions * * * * * * * * * * * * * //
+
+void Foam::meltdem::laserHeatSource::checkInBounds
+(
+    const dictionary& dict,
+    const word& entry,
+    const point& p
+) const
+{
+    // polyMesh::bounds() is the global box (reduced over processors)
+    const boundBox& bb = mesh_.bounds();
+    const scalar tol = 1e-9*mag(bb.span());
+    const boundBox grown(bb.min() - vector::one*tol, bb.max() + vector::one*tol);
+    if (!grown.contains(p))
+    {
+        FatalIOErrorInFunction(dict)
+            << entry << ": laser path point " << p << " lies outside the mesh "
+            << "bounds " << bb << " in " << dict.name() << exit(FatalIOError);
+    }
+}
+
+
+// * * * * * * * * * * * * * * * Member Functions  * * * * * * * * * * * * * //
+
+Foam::vector Foam::meltdem::laserHeatSource::position(const scalar t) const
+{
+    const scalar tau = max(min(t, tStop_) - tStart_, scalar(0));
+    if (!polyline_)
+    {
+        return points_[0] + velocity_*tau;
+    }
+    const scalar s = speed_*tau;
+    for (label i = 1; i < points_.size(); ++i)
+    {
+        if (s <= arcLength_[i])
+        {
+            const scalar len = arcLength_[i] - arcLength_[i-1];
+            const scalar w = len > 0 ? (s - arcLength_[i-1])/len : 0;
+            return points_[i-1] + w*(points_[i] - points_[i-1]);
+        }
+    }
+    return points_.last();
+}
+
+
+Foam::tmp<Foam::volScalarField> Foam::meltdem::laserHeatSource::heatSource
+(
+    const volScalarField& alphaMetal
+) const
+{
+    tmp<volScalarField> tq
+    (
+        new volScalarField
+        (
+            IOobject
+            (
+                "laserHeatSourceModel",
+                mesh_.time().timeName(),
+                mesh_,
+                IOobject::NO_READ,
+                IOobject::NO_WRITE,
+                false
+            ),
+            mesh_,
+            dimensionedScalar("zero", dimPower/dimVolume, 0)
+        )
+    );
+    volScalarField& q = tq.ref();
+    absorbedPower_ = 0;
+    hitFraction_ = 0;
+
+    const scalar t = mesh_.time().value();
+    if (!on(t) || power_*absorptivity_ <= 0)
+    {
+        return tq;
+    }
+
+    // <grad(alpha) . e> = |grad alpha| <-n_out . e>: the interface facing the beam
+    const volVectorField gradAlpha(fvc::grad(alphaMetal));
+    const point x0 = position(t);
+    const vector& e = direction_;
+    const vectorField& C = mesh_.C();
+    scalarField& qi = q.primitiveFieldRef();
+    forAll(qi, celli)
+    {
+        const scalar facing = gradAlpha[celli] & e;
+        if (facing > 0)
+        {
+            vector d = C[celli] - x0;
+            d -= (d & e)*e;
+            qi[celli] = exp(-2*magSqr(d)/sqr(radius_))*facing;
+        }
+    }
+
+    const scalar raw = gSum(qi*mesh_.V());
+    hitFraction_ = 2*raw/(constant::mathematical::pi*sqr(radius_));
+    if (hitFraction_ < minHitFraction_ || raw <= 0)
+    {
+        // the beam misses the metal: nothing is absorbed
+        qi = 0;
+        return tq;
+    }
+
+    qi *= absorptivity_*power_/raw;
+    q.correctBoundaryConditions();
+    absorbedPower_ = gSum(qi*mesh_.V());
+    return tq;
+}
+
+// ************************************************************************* //
