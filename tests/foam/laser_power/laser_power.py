@@ -1,0 +1,270 @@
+#!/usr/bin/env python3
+"""foam.laser_power: meltdem::laserHeatSource and evaporationModel evaluated by meltdemLaserCheck
+on written alpha fields of a 3D box (no solver).
+
+- absorbed power = eta P to 1e-6 (flat surface, off-centre beam partly outside the box; curved
+  spherical cap; serial and np 2), integrated here from the written field (V = dx dy dz);
+- the beam convention (1/e^2 radius, I0 = 2P/(pi r^2)): un-normalised hit fraction on a flat
+  surface under the whole beam = 1;
+- zero when off and when no metal is under the beam; moving linear and polyline paths;
+- p_v(T_v) = 0.54 p_a (SPH eq. 10), p_v and the eq. 18 flux at 2500 K by hand, heat-loss
+  integral over a flat surface = flux * area;
+- bad input stops with a FatalIOError naming the entry.
+"""
+import math
+import os
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+
+import numpy as np
+
+SRC = os.environ.get("MELTDEM_SOURCE_DIR", os.path.join(os.path.dirname(__file__), "..", "..", ".."))
+sys.path.insert(0, os.path.join(SRC, "tests", "support"))
+for p in ("tests/support", "tests/foam/capillary"):
+    sys.path.insert(0, os.path.join(SRC, p))
+import foamcase as fc  # noqa: E402
+from meltdem_report import check_relative, check_absolute, report  # noqa: E402
+
+TEST = "foam.laser_power"
+APP = os.path.join(os.environ.get("MELTDEM_BIN", ""), "meltdemLaserCheck")
+LX, LY, LZ = 200e-6, 200e-6, 100e-6
+NX, NY, NZ = 20, 20, 10
+DX, DY, DZ = LX / NX, LY / NY, LZ / NZ
+P, ETA, R = 200.0, 0.4, 30e-6
+EVAP = dict(pAmbient=1e5, CT=5e4, Tboil=3000.0, hv=6.583e6, cp=965.0, Th0=663.731, CM=1.1095e-3,
+            stickingCoefficient=1.0)
+
+ix, iy, iz = np.meshgrid(np.arange(NX), np.arange(NY), np.arange(NZ), indexing="ij")
+# blockMesh order: x fastest, then y, then z
+XC = ((ix + 0.5) * DX).transpose(2, 1, 0).ravel()
+YC = ((iy + 0.5) * DY).transpose(2, 1, 0).ravel()
+ZC = ((iz + 0.5) * DZ).transpose(2, 1, 0).ravel()
+
+
+def block_mesh(case):
+    fc.dictionary(case, "system/blockMeshDict", f"""convertToMeters 1;
+vertices ( (0 0 0) ({LX!r} 0 0) ({LX!r} {LY!r} 0) (0 {LY!r} 0)
+           (0 0 {LZ!r}) ({LX!r} 0 {LZ!r}) ({LX!r} {LY!r} {LZ!r}) (0 {LY!r} {LZ!r}) );
+blocks ( hex (0 1 2 3 4 5 6 7) ({NX} {NY} {NZ}) simpleGrading (1 1 1) );
+edges ();
+boundary ( walls {{ type wall; faces ((0 4 7 3) (1 2 6 5) (0 1 5 4) (3 7 6 2) (0 3 2 1) (4 5 6 7)); }} );
+mergePatchPairs ();
+""")
+    fc.dictionary(case, "system/decomposeParDict", "numberOfSubdomains 2;\nmethod simple;\n"
+                  "coeffs { n (2 1 1); }\n")
+
+
+def make_case(root, name, alpha, laser, evap=None):
+    case = os.path.join(root, name)
+    os.makedirs(case)
+    block_mesh(case)
+    fc.control_dict(case, "meltdemLaserCheck", 1.0, 1e-6, 1.0)
+    fc.fv_schemes(case)
+    fc.fv_solution(case)
+    fc.field(case, "alpha.metal", "[0 0 0 0 0 0 0]", alpha, {"walls": "type zeroGradient;"})
+    body = "laser\n{\n" + "".join(f"    {k} {v};\n" for k, v in laser.items()) + "}\n"
+    ev = dict(EVAP)
+    ev.update(evap or {})
+    body += "evaporation\n{\n" + "".join(f"    {k} {v!r};\n" for k, v in ev.items()) + "}\n"
+    fc.dictionary(case, "constant/meltdemProperties", body)
+    fc.run(["blockMesh"], case, "log.blockMesh")
+    return case
+
+
+def vec(p):
+    return "(" + " ".join(repr(float(c)) for c in p) + ")"
+
+
+def check_app(case, args, np_=1, check=True):
+    cmd = [APP] + args
+    if np_ > 1:
+        fc.run(["decomposePar", "-force"], case, "log.decomposePar")
+        cmd = ["mpirun", "-np", str(np_), "--oversubscribe"] + cmd + ["-parallel"]
+    env = {"OMPI_ALLOW_RUN_AS_ROOT": "1", "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM": "1"}
+    rc = fc.run(cmd, case, "log.check", env=env, check=check)
+    with open(os.path.join(case, "log.check")) as f:
+        return rc, f.read()
+
+
+def laser_lines(log):
+    out = []
+    for line in log.splitlines():
+        if line.startswith("laser t "):
+            t = line.split()
+            d = {t[i]: t[i + 1:i + 4] if t[i] == "position" else t[i + 1]
+                 for i in range(0, len(t) - 1) if t[i] in ("t", "on", "position", "absorbed",
+                                                            "hitFraction", "integral", "min")}
+            out.append(dict(t=float(d["t"]), on=int(d["on"]), pos=np.array([float(v) for v in d["position"]]),
+                            absorbed=float(d["absorbed"]), hit=float(d["hitFraction"]),
+                            integral=float(d["integral"]), qmin=float(d["min"])))
+    return out
+
+
+def field_integral(case, time):
+    q = fc.read_internal(os.path.join(case, time, "laserHeatSource"))
+    q = np.broadcast_to(q, XC.shape)
+    return float(np.sum(q) * DX * DY * DZ), q
+
+
+def sub_sampled_sphere(xc, yc, zc, rad, nsub=6):
+    s = (np.arange(nsub) + 0.5) / nsub - 0.5
+    a = np.zeros(XC.size)
+    for sx in s:
+        for sy in s:
+            for sz in s:
+                a += ((XC + sx * DX - xc) ** 2 + (YC + sy * DY - yc) ** 2 + (ZC + sz * DZ - zc) ** 2
+                      <= rad * rad)
+    return a / nsub ** 3
+
+
+def main():
+    if not os.path.exists(APP):
+        print(f"missing {APP}")
+        return 1
+    ok = True
+    root = tempfile.mkdtemp(prefix="laser_power_")
+    z_top = LZ
+    flat = (ZC < 50e-6).astype(float)  # interface on the face z = 50 um
+    base = dict(power=P, absorptivity=ETA, radius=R, direction="(0 0 -1)")
+
+    # 1. flat surface, centred beam: convention (hit fraction 1) and eta P
+    lz = dict(base, position=vec((100e-6, 100e-6, z_top)))
+    case = make_case(root, "flat_centre", flat, lz)
+    _, log = check_app(case, ["-times", "(0)", "-write"])
+    r = laser_lines(log)[0]
+    ok &= check_relative(TEST, "flat, centred beam: hit fraction (1/e^2 radius, I0 = 2P/(pi r^2))",
+                         r["hit"], 1.0, 1e-3)
+    integ, q = field_integral(case, "0")
+    ok &= check_relative(TEST, "flat, centred: integral of the written field [W]", integ, ETA * P, 1e-6)
+    cx = float(np.sum(q * XC) / np.sum(q))
+    ok &= check_absolute(TEST, "flat, centred: source centroid x [m]", cx, 100e-6, 1e-7)
+
+    # 2. flat surface, beam off-centre and partly outside the box: still eta P (serial, np 2)
+    loff = dict(base, position=vec((175e-6, 80e-6, z_top)))
+    case = make_case(root, "flat_off", flat, loff)
+    _, log = check_app(case, ["-times", "(0)", "-write"])
+    r = laser_lines(log)[0]
+    integ, q = field_integral(case, "0")
+    ok &= check_relative(TEST, "flat, off-centre beam partly off the box: written-field integral [W]",
+                         integ, ETA * P, 1e-6)
+    ok &= check_relative(TEST, "flat, off-centre: model absorbedPower [W]", r["absorbed"], ETA * P, 1e-6)
+    expect_hit = 0.5 * (1 + math.erf(math.sqrt(2) * (LX - 175e-6) / R))  # x-truncated Gaussian
+    # the same Gaussian summed here over the interface cells (x < 200 um: the box edge truncates it)
+    xs = (np.arange(NX) + 0.5) * DX
+    ys = (np.arange(NY) + 0.5) * DY
+    g = np.exp(-2 * ((xs[:, None] - 175e-6) ** 2 + (ys[None, :] - 80e-6) ** 2) / R ** 2)
+    hit_sum = 2 * float(np.sum(g)) * DX * DY / (math.pi * R ** 2)
+    ok &= check_relative(TEST, "flat, off-centre: hit fraction vs the cell-centre Gaussian sum", r["hit"],
+                         hit_sum, 1e-9)
+    ok &= check_relative(TEST, "flat, off-centre: hit fraction vs erf truncation (midpoint rule, r = 3 dx)",
+                         r["hit"], expect_hit, 5e-3)
+    _, log2 = check_app(case, ["-times", "(0)"], np_=2)
+    r2 = laser_lines(log2)[0]
+    ok &= check_relative(TEST, "flat, off-centre, np 2: integral (gSum) [W]", r2["integral"], ETA * P, 1e-6)
+    ok &= check_relative(TEST, "flat, off-centre, np 2 vs serial hit fraction", r2["hit"], r["hit"], 1e-9)
+
+    # 3. curved surface: spherical cap (radius 80 um, centre 10 um below the box), beam off-centre
+    cap = sub_sampled_sphere(100e-6, 100e-6, -10e-6, 80e-6)
+    lcap = dict(base, position=vec((130e-6, 85e-6, z_top)))
+    case = make_case(root, "cap", cap, lcap)
+    _, log = check_app(case, ["-times", "(0)", "-write"])
+    r = laser_lines(log)[0]
+    integ, q = field_integral(case, "0")
+    ok &= check_relative(TEST, "curved cap, off-centre beam: written-field integral [W]", integ, ETA * P, 1e-6)
+    ok &= check_absolute(TEST, "curved cap: min source (>= 0) [W/m3]", min(0.0, float(q.min())), 0.0, 0.0)
+    report(TEST, "curved cap: un-normalised hit fraction (info)", r["hit"], "-", "info", True)
+    _, log2 = check_app(case, ["-times", "(0)"], np_=2)
+    ok &= check_relative(TEST, "curved cap, np 2: integral (gSum) [W]", laser_lines(log2)[0]["integral"],
+                         ETA * P, 1e-6)
+
+    # 4. off / no metal: zero
+    lonoff = dict(base, position=vec((100e-6, 100e-6, z_top)), tOn=1e-4, tOff=2e-4)
+    case = make_case(root, "onoff", flat, lonoff)
+    _, log = check_app(case, ["-times", "(0 1.5e-4 2e-4 3e-4)"])
+    rs = laser_lines(log)
+    ok &= check_absolute(TEST, "before tOn: absorbed [W]", rs[0]["absorbed"] + abs(rs[0]["integral"]), 0.0, 0.0)
+    ok &= check_relative(TEST, "between tOn and tOff: absorbed [W]", rs[1]["integral"], ETA * P, 1e-6)
+    ok &= check_absolute(TEST, "at tOff and after: absorbed [W]",
+                         abs(rs[2]["integral"]) + abs(rs[3]["integral"]), 0.0, 0.0)
+    case = make_case(root, "nometal", np.zeros(XC.size), dict(base, position=vec((100e-6, 100e-6, z_top))))
+    _, log = check_app(case, ["-times", "(0)"])
+    ok &= check_absolute(TEST, "no metal under the beam: absorbed [W]", abs(laser_lines(log)[0]["integral"]),
+                         0.0, 0.0)
+    # beam over a region with no metal surface (metal only in x < 50 um): misses
+    side = ((XC < 50e-6) & (ZC < 50e-6)).astype(float)
+    case = make_case(root, "miss", side, dict(base, position=vec((170e-6, 100e-6, z_top)), radius=10e-6))
+    _, log = check_app(case, ["-times", "(0)"])
+    ok &= check_absolute(TEST, "beam 12 radii away from the metal: absorbed [W]",
+                         abs(laser_lines(log)[0]["integral"]), 0.0, 0.0)
+
+    # 5. moving paths
+    x0, v, ts, te = 50e-6, 0.5, 1e-5, 2.1e-4
+    lmove = dict(base, position=vec((x0, 100e-6, z_top)), velocity="(0.5 0 0)", tStart=ts, tStop=te, tOff=1.0)
+    case = make_case(root, "linear", flat, lmove)
+    times = [0.0, 1e-4, 1.5e-4, 3e-4]
+    _, log = check_app(case, ["-times", "(" + " ".join(map(repr, times)) + ")", "-write"])
+    rs = laser_lines(log)
+    err = max(abs(rr["pos"][0] - (x0 + v * min(max(t - ts, 0), te - ts))) for rr, t in zip(rs, times))
+    ok &= check_absolute(TEST, "linear path: max |x(t) - x0 - v (t - tStart)| [m] (clamped at tStop)", err, 0.0, 1e-12)
+    _, q = field_integral(case, "0.0001")
+    cx = float(np.sum(q * XC) / np.sum(q))
+    ok &= check_absolute(TEST, "linear path: source centroid at t = 1e-4 [m]", cx, x0 + v * (1e-4 - ts), 2e-7)
+    lpoly = dict(base, path="((50e-6 50e-6 1e-4) (150e-6 50e-6 1e-4) (150e-6 150e-6 1e-4))", speed=1.0, tStart=0)
+    case = make_case(root, "polyline", flat, lpoly)
+    _, log = check_app(case, ["-times", "(5e-5 1.5e-4 1e-3)"])
+    rs = laser_lines(log)
+    ref = [(100e-6, 50e-6), (150e-6, 100e-6), (150e-6, 150e-6)]
+    err = max(math.hypot(rr["pos"][0] - a, rr["pos"][1] - b) for rr, (a, b) in zip(rs, ref))
+    ok &= check_absolute(TEST, "polyline path: max position error at 3 times [m]", err, 0.0, 1e-12)
+
+    # 6. evaporation (SPH eq. 10, 18)
+    case = make_case(root, "evap", flat, dict(base, position=vec((100e-6, 100e-6, z_top))))
+    _, log = check_app(case, ["-T", "(2500 3000)"])
+    ev = {}
+    for line in log.splitlines():
+        t = line.split()
+        if line.startswith("evaporation T"):
+            ev[float(t[2])] = (float(t[4]), float(t[6]))
+        if line.startswith("evaporationField"):
+            field_loss = float(t[4])
+    ok &= check_relative(TEST, "p_v(T_boil) [Pa] = 0.54 p_a", ev[3000.0][0], 0.54 * 1e5, 1e-12)
+    pv_hand = 5.4e4 * math.exp(-5e4 * (1 / 2500 - 1 / 3000))  # 1926.4 Pa
+    ok &= check_relative(TEST, "p_v(2500 K) [Pa] by hand", ev[2500.0][0], pv_hand, 1e-12)
+    flux_hand = 0.82 * pv_hand * math.sqrt(1.1095e-3 / 2500) * (6.583e6 + 965 * (2500 - 663.731))
+    ok &= check_relative(TEST, "eq. 18 heat flux at 2500 K [W/m2] by hand", ev[2500.0][1], flux_hand, 1e-12)
+    ok &= check_relative(TEST, "heat-loss field integral, flat surface, 2500 K [W] = flux * area",
+                         field_loss, flux_hand * LX * LY, 1e-9)
+
+    # 7. bad input: FatalIOError naming the entry, no signal
+    bad = [("power", dict(base, position=vec((1e-4, 1e-4, z_top)), power=-1), "laser"),
+           ("absorptivity", dict(base, position=vec((1e-4, 1e-4, z_top)), absorptivity=1.5), "laser"),
+           ("radius", dict(base, position=vec((1e-4, 1e-4, z_top)), radius=0), "laser"),
+           ("position", dict(base, position=vec((1e-4, 3e-4, z_top))), "laser"),
+           ("tOff", dict(base, position=vec((1e-4, 1e-4, z_top)), tOn=1e-4, tOff=0), "laser"),
+           ("velocity", dict(base, position=vec((1e-4, 1e-4, z_top)), velocity="(1 0 0)", tStop=1e-3), "laser"),
+           ("path", dict(base, path="((1e-4 1e-4 1e-4) (5e-4 1e-4 1e-4))", speed=1), "laser"),
+           ("CT", dict(base, position=vec((1e-4, 1e-4, z_top))), "evap")]
+    nbad = 0
+    for i, (entry, ld, kind) in enumerate(bad):
+        case = make_case(root, f"bad{i}", flat, ld, evap={"CT": -1.0} if kind == "evap" else None)
+        rc, log = check_app(case, ["-T", "(3000)"] if kind == "evap" else ["-times", "(0)"], check=False)
+        good = (rc not in (0,) and rc < 128 and "FOAM FATAL IO ERROR" in log
+                and re.search(r"\b" + entry + r"\b", log.split("FOAM FATAL IO ERROR", 1)[-1]) is not None)
+        if not good:
+            print(f"bad input {entry}: rc {rc}\n{log[-1500:]}")
+        nbad += good
+    ok &= check_absolute(TEST, f"bad inputs stopped with a FatalIOError naming the entry (of {len(bad)})",
+                         nbad, len(bad), 0)
+
+    if ok:
+        shutil.rmtree(root, ignore_errors=True)
+    else:
+        print(f"cases kept in {root}")
+    return 0 if ok else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())
