@@ -22,6 +22,7 @@ Foam::meltdem::laserHeatSource::laserHeatSource
     tOn_(dict.getOrDefault<scalar>("tOn", 0)),
     tOff_(dict.getOrDefault<scalar>("tOff", GREAT)),
     minHitFraction_(dict.getOrDefault<scalar>("minHitFraction", 1e-3)),
+    alphaWeighted_(true),
     points_(),
     arcLength_(),
     polyline_(dict.found("path")),
@@ -74,6 +75,21 @@ Foam::meltdem::laserHeatSource::laserHeatSource
         FatalIOErrorInFunction(dict)
             << "minHitFraction (" << minHitFraction_ << ") must be in [0,1) in "
             << dict.name() << exit(FatalIOError);
+    }
+
+    const word distribution
+    (
+        dict.getOrDefault<word>("distribution", "alphaWeighted")
+    );
+    if (distribution == "gradAlpha")
+    {
+        alphaWeighted_ = false;
+    }
+    else if (distribution != "alphaWeighted")
+    {
+        FatalIOErrorInFunction(dict)
+            << "distribution " << distribution << " unknown (alphaWeighted or "
+            << "gradAlpha) in " << dict.name() << exit(FatalIOError);
     }
 
     // the end of the motion: the path must stay in the mesh until then
@@ -131,7 +147,8 @@ Foam::meltdem::laserHeatSource::laserHeatSource
         }
     }
 
-    Info<< "laserHeatSource: P = " << power_ << " W, eta = " << absorptivity_
+    Info<< "laserHeatSource: " << (alphaWeighted_ ? "alphaWeighted" : "gradAlpha")
+        << " distribution, P = " << power_ << " W, eta = " << absorptivity_
         << ", 1/e^2 radius = " << radius_ << " m, direction " << direction_
         << ", on in [" << tOn_ << ", " << tOff_ << ")"
         << (polyline_ ? ", polyline path" : ", linear path") << endl;
@@ -221,6 +238,7 @@ Foam::tmp<Foam::volScalarField> Foam::meltdem::laserHeatSource::heatSource
     const vector& e = direction_;
     const vectorField& C = mesh_.C();
     scalarField& qi = q.primitiveFieldRef();
+    scalar raw = 0;
     forAll(qi, celli)
     {
         const scalar facing = gradAlpha[celli] & e;
@@ -229,19 +247,26 @@ Foam::tmp<Foam::volScalarField> Foam::meltdem::laserHeatSource::heatSource
             vector d = C[celli] - x0;
             d -= (d & e)*e;
             qi[celli] = exp(-2*magSqr(d)/sqr(radius_))*facing;
+            raw += qi[celli]*mesh_.V()[celli];
         }
     }
+    reduce(raw, sumOp<scalar>());
+    if (alphaWeighted_)
+    {
+        qi *= max(min(alphaMetal.primitiveField(), scalar(1)), scalar(0));
+    }
 
-    const scalar raw = gSum(qi*mesh_.V());
+    // the normalisation is that of the weighted shape; the hit test uses the plain one
+    const scalar weighted = gSum(qi*mesh_.V());
     hitFraction_ = 2*raw/(constant::mathematical::pi*sqr(radius_));
-    if (hitFraction_ < minHitFraction_ || raw <= 0)
+    if (hitFraction_ < minHitFraction_ || weighted <= 0)
     {
         // the beam misses the metal: nothing is absorbed
         qi = 0;
         return tq;
     }
 
-    qi *= absorptivity_*power_/raw;
+    qi *= absorptivity_*power_/weighted;
     q.correctBoundaryConditions();
     absorbedPower_ = gSum(qi*mesh_.V());
     return tq;

@@ -141,16 +141,20 @@ def main():
     ok &= check_relative(TEST, "flat, centred: integral of the written field [W]", integ, ETA * P, 1e-6)
     cx = float(np.sum(q * XC) / np.sum(q))
     ok &= check_absolute(TEST, "flat, centred: source centroid x [m]", cx, 100e-6, 1e-7)
+    ok &= check_absolute(TEST, "flat, alphaWeighted (default): power in gas cells [W]",
+                         float(np.sum(q[flat == 0])) * DX * DY * DZ, 0.0, 0.0)
 
     # 2. flat surface, beam off-centre and partly outside the box: still eta P (serial, np 2)
-    loff = dict(base, position=vec((175e-6, 80e-6, z_top)))
+    loff = dict(base, position=vec((175e-6, 80e-6, z_top)), distribution="gradAlpha")
     case = make_case(root, "flat_off", flat, loff)
     _, log = check_app(case, ["-times", "(0)", "-write"])
     r = laser_lines(log)[0]
     integ, q = field_integral(case, "0")
-    ok &= check_relative(TEST, "flat, off-centre beam partly off the box: written-field integral [W]",
+    ok &= check_relative(TEST, "flat, off-centre beam partly off the box (gradAlpha): written-field integral [W]",
                          integ, ETA * P, 1e-6)
     ok &= check_relative(TEST, "flat, off-centre: model absorbedPower [W]", r["absorbed"], ETA * P, 1e-6)
+    ok &= check_relative(TEST, "flat, off-centre, distribution gradAlpha: share in the gas cells",
+                         float(np.sum(q[flat == 0]) / np.sum(q)), 0.5, 1e-9)
     expect_hit = 0.5 * (1 + math.erf(math.sqrt(2) * (LX - 175e-6) / R))  # x-truncated Gaussian
     # the same Gaussian summed here over the interface cells (x < 200 um: the box edge truncates it)
     xs = (np.arange(NX) + 0.5) * DX
@@ -246,6 +250,7 @@ def main():
            ("tOff", dict(base, position=vec((1e-4, 1e-4, z_top)), tOn=1e-4, tOff=0), "laser"),
            ("velocity", dict(base, position=vec((1e-4, 1e-4, z_top)), velocity="(1 0 0)", tStop=1e-3), "laser"),
            ("path", dict(base, path="((1e-4 1e-4 1e-4) (5e-4 1e-4 1e-4))", speed=1), "laser"),
+           ("distribution", dict(base, position=vec((1e-4, 1e-4, z_top)), distribution="sharp"), "laser"),
            ("CT", dict(base, position=vec((1e-4, 1e-4, z_top))), "evap")]
     nbad = 0
     for i, (entry, ld, kind) in enumerate(bad):
