@@ -2,7 +2,8 @@
 """Bad input to meltdemFoam stops with an OpenFOAM FatalIOError whose text names the entry.
 
 A tiny 1D conduction case (5 cells, physics { flow off; energy on; }) that runs cleanly is
-broken one entry at a time in constant/meltdemProperties. Each variant must end with a non-zero
+broken one entry at a time in constant/meltdemProperties (the metal/gas data, the switches,
+darcy, and the laser and evaporation sub-dictionaries). Each variant must end with a non-zero
 exit code that is not a signal (no segfault, no floating-point trap), print 'FOAM FATAL IO ERROR'
 and name the offending entry; the clean case must run to the end (so a variant cannot pass by
 breaking something else).
@@ -43,6 +44,12 @@ VARIANTS = {
                              ["'L'"]),
     "missing_gas_dict": ("no gas sub-dictionary", {}, METAL, "", "", ["'gas'"]),
     "unknown_switch": ("physics { flw on; }", {"flw": "on"}, METAL, GAS, "", ["'flw'"]),
+    "laser_outside_domain": ("laser position (5e-3 0.3e-3 1e-4) outside the 1 mm x 0.2 mm slab", {"laser": "on"},
+                             METAL, GAS, "laser { power 10; absorptivity 0.5; radius 5e-5; direction (0 -1 0); "
+                             "position (5e-3 0.3e-3 1e-4); velocity (0 0 0); }\n", ["position", "outside"]),
+    "negative_boiling_point": ("evaporation Tboil = -3000", {"evaporation": "on"}, METAL, GAS,
+                               "evaporation { pAmbient 1e5; CT 5e4; Tboil -3000; hv 6.583e6; cp 965; "
+                               "Th0 663.731; CM 1.1095e-3; }\n", ["Tboil"]),
     "missing_darcy_C": ("darcy on, darcy { b 1e-3; } (no C)", {"flow": "on", "darcy": "on"}, METAL, GAS,
                         "darcy { b 1e-3; }\n", ["'C'"]),
 }
