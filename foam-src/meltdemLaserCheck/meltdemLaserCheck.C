@@ -64,8 +64,9 @@ int main(int argc, char *argv[])
         const volScalarField q(evap.heatLoss(T, alpha));
         const volScalarField p(evap.recoilPressure(T));
         Info<< "evaporationField T " << T0 << " heatLossIntegral "
-            << gSum(q.primitiveField()*mesh.V()) << " pRecoilMax " << gMax(p)
-            << nl;
+            << gSum(q.primitiveField()*mesh.V()) << " gasCellLoss "
+            << gSum(pos0(0.5 - alpha.primitiveField())*q.primitiveField()*mesh.V())
+            << " pRecoilMax " << gMax(p) << nl;
     }
 
     if (args.found("times"))

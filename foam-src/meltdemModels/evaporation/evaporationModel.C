@@ -122,14 +122,17 @@ Foam::tmp<Foam::volScalarField> Foam::meltdem::evaporationModel::heatLoss
     q.dimensions().reset(dimPower/dimVolume);
     forAll(q, celli)
     {
-        q[celli] *= fluxLoss(T[celli]);
+        const scalar w = 2*max(min(alphaMetal[celli], scalar(1)), scalar(0));
+        q[celli] *= w*fluxLoss(T[celli]);
     }
     volScalarField::Boundary& qb = q.boundaryFieldRef();
     forAll(qb, patchi)
     {
         forAll(qb[patchi], facei)
         {
-            qb[patchi][facei] *= fluxLoss(T.boundaryField()[patchi][facei]);
+            const scalar w =
+                2*max(min(alphaMetal.boundaryField()[patchi][facei], scalar(1)), scalar(0));
+            qb[patchi][facei] *= w*fluxLoss(T.boundaryField()[patchi][facei]);
         }
     }
     return tq;

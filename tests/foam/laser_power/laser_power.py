@@ -233,7 +233,7 @@ def main():
         if line.startswith("evaporation T"):
             ev[float(t[2])] = (float(t[4]), float(t[6]))
         if line.startswith("evaporationField"):
-            field_loss = float(t[4])
+            field_loss, gas_loss = float(t[4]), float(t[6])
     ok &= check_relative(TEST, "p_v(T_boil) [Pa] = 0.54 p_a", ev[3000.0][0], 0.54 * 1e5, 1e-12)
     pv_hand = 5.4e4 * math.exp(-5e4 * (1 / 2500 - 1 / 3000))  # 1926.4 Pa
     ok &= check_relative(TEST, "p_v(2500 K) [Pa] by hand", ev[2500.0][0], pv_hand, 1e-12)
@@ -241,6 +241,14 @@ def main():
     ok &= check_relative(TEST, "eq. 18 heat flux at 2500 K [W/m2] by hand", ev[2500.0][1], flux_hand, 1e-12)
     ok &= check_relative(TEST, "heat-loss field integral, flat surface, 2500 K [W] = flux * area",
                          field_loss, flux_hand * LX * LY, 1e-9)
+    ok &= check_absolute(TEST, "heat loss in gas cells (2 alpha weight) [W]", gas_loss, 0.0, 0.0)
+    # smeared interface (alpha 1, 2/3, 1/3, 0 over the rows z = 35..65 um): the weight keeps the area
+    smear = np.interp(ZC, [35e-6, 65e-6], [1.0, 0.0])
+    case = make_case(root, "evap_smear", smear, dict(base, position=vec((100e-6, 100e-6, z_top))))
+    _, log = check_app(case, ["-T", "(2500)"])
+    loss = [float(l.split()[4]) for l in log.splitlines() if l.startswith("evaporationField")][0]
+    ok &= check_relative(TEST, "heat-loss integral, smeared interface (3 cells), 2500 K [W] = flux * area",
+                         loss, flux_hand * LX * LY, 1e-9)
 
     # 7. bad input: FatalIOError naming the entry, no signal
     bad = [("power", dict(base, position=vec((1e-4, 1e-4, z_top)), power=-1), "laser"),
