@@ -45,7 +45,8 @@ int main(int argc, char *argv[])
         for (const scalar T : args.getList<scalar>("T"))
         {
             Info<< "evaporation T " << T << " pv " << evap.pv(T)
-                << " flux " << evap.fluxLoss(T) << nl;
+                << " flux " << evap.fluxLoss(T)
+                << " dfluxdT " << evap.fluxLossDerivative(T) << nl;
         }
         // the field path: uniform T, interface integral of heatLoss
         volScalarField alpha

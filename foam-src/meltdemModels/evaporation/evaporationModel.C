@@ -73,6 +73,51 @@ Foam::scalar Foam::meltdem::evaporationModel::fluxLoss(const scalar T) const
 }
 
 
+Foam::scalar Foam::meltdem::evaporationModel::fluxLossDerivative
+(
+    const scalar T
+) const
+{
+    const scalar Tpos = max(T, SMALL);
+    const scalar mdot = massFlowFactor*cs_*pv(Tpos)*sqrt(CM_/Tpos);
+    const scalar h = hv_ + cp_*(Tpos - Th0_);
+    if (mdot*h <= 0)
+    {
+        return 0;
+    }
+    // d mdot/dT = mdot (C_T/T^2 - 1/(2T))
+    return max(mdot*(CT_/sqr(Tpos) - 0.5/Tpos)*h + mdot*cp_, scalar(0));
+}
+
+
+Foam::tmp<Foam::volScalarField>
+Foam::meltdem::evaporationModel::heatLossDerivative
+(
+    const volScalarField& T,
+    const volScalarField& alphaMetal
+) const
+{
+    tmp<volScalarField> tq
+    (
+        new volScalarField
+        (
+            IOobject("evaporationHeatLossDerivative", T.time().timeName(), mesh_,
+                     IOobject::NO_READ, IOobject::NO_WRITE, false),
+            mag(fvc::grad(alphaMetal))
+        )
+    );
+    volScalarField& q = tq.ref();
+    q.dimensions().reset(dimPower/dimVolume/dimTemperature);
+    forAll(q, celli)
+    {
+        const scalar w = 2*max(min(alphaMetal[celli], scalar(1)), scalar(0));
+        q[celli] *= w*fluxLossDerivative(T[celli]);
+    }
+    q.boundaryFieldRef() = Zero;
+    return tq;
+}
+
+
 Foam::tmp<Foam::volScalarField>
 Foam::meltdem::evaporationModel::recoilPressure(const volScalarField& T) const
 {

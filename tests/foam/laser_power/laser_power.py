@@ -231,7 +231,7 @@ def main():
     for line in log.splitlines():
         t = line.split()
         if line.startswith("evaporation T"):
-            ev[float(t[2])] = (float(t[4]), float(t[6]))
+            ev[float(t[2])] = (float(t[4]), float(t[6]), float(t[8]))
         if line.startswith("evaporationField"):
             field_loss, gas_loss = float(t[4]), float(t[6])
     ok &= check_relative(TEST, "p_v(T_boil) [Pa] = 0.54 p_a", ev[3000.0][0], 0.54 * 1e5, 1e-12)
@@ -239,6 +239,10 @@ def main():
     ok &= check_relative(TEST, "p_v(2500 K) [Pa] by hand", ev[2500.0][0], pv_hand, 1e-12)
     flux_hand = 0.82 * pv_hand * math.sqrt(1.1095e-3 / 2500) * (6.583e6 + 965 * (2500 - 663.731))
     ok &= check_relative(TEST, "eq. 18 heat flux at 2500 K [W/m2] by hand", ev[2500.0][1], flux_hand, 1e-12)
+    fl = lambda T: (0.82 * 5.4e4 * math.exp(-5e4 * (1 / T - 1 / 3000)) * math.sqrt(1.1095e-3 / T)
+                    * (6.583e6 + 965 * (T - 663.731)))
+    ok &= check_relative(TEST, "d flux/dT at 2500 K [W/m2/K] vs central difference (dT 1e-3 K)",
+                         ev[2500.0][2], (fl(2500 + 1e-3) - fl(2500 - 1e-3)) / 2e-3, 1e-6)
     ok &= check_relative(TEST, "heat-loss field integral, flat surface, 2500 K [W] = flux * area",
                          field_loss, flux_hand * LX * LY, 1e-9)
     ok &= check_absolute(TEST, "heat loss in gas cells (2 alpha weight) [W]", gas_loss, 0.0, 0.0)
