@@ -28,6 +28,7 @@ int main(int argc, char *argv[])
     argList::addOption("T", "list", "temperatures to evaluate evaporation at");
     argList::addOption("alpha", "name", "metal fraction field (alpha.metal)");
     argList::addBoolOption("write", "write the laser field of each time");
+    argList::addOption("dt", "value", "time step ending at each time (default 1e-6)");
 
     #include "setRootCase.H"
     #include "createTime.H"
@@ -83,9 +84,12 @@ int main(int argc, char *argv[])
         for (const scalar t : args.getList<scalar>("times"))
         {
             runTime.setTime(t, ++index);
+            // the step (t - dt, t] (the laser averages its power over it)
+            runTime.setDeltaT(args.opt<scalar>("dt", 1e-6), false);
             const volScalarField q(laser.heatSource(alpha));
             const vector x0 = laser.position();
-            Info<< "laser t " << t << " on " << laser.on()
+            Info<< "laser t " << t << " on " << laser.on() << " onFraction "
+                << laser.onFraction()
                 << " position " << x0.x() << ' ' << x0.y() << ' ' << x0.z()
                 << " absorbed " << laser.absorbedPower()
                 << " hitFraction " << laser.hitFraction()

@@ -23,6 +23,8 @@ Foam::meltdem::laserHeatSource::laserHeatSource
     tOff_(dict.getOrDefault<scalar>("tOff", GREAT)),
     minHitFraction_(dict.getOrDefault<scalar>("minHitFraction", 1e-3)),
     alphaWeighted_(true),
+    timeAveraged_(dict.getOrDefault<bool>("timeAveraged", true)),
+    scaleByHitFraction_(dict.getOrDefault<bool>("scaleByHitFraction", false)),
     points_(),
     arcLength_(),
     polyline_(dict.found("path")),
@@ -200,6 +202,18 @@ Foam::vector Foam::meltdem::laserHeatSource::position(const scalar t) const
 }
 
 
+Foam::scalar Foam::meltdem::laserHeatSource::onFraction() const
+{
+    const scalar t = mesh_.time().value();
+    const scalar dt = mesh_.time().deltaTValue();
+    if (!timeAveraged_ || !(dt > 0))
+    {
+        return on(t) ? 1 : 0;
+    }
+    return max(min(t, tOff_) - max(t - dt, tOn_), scalar(0))/dt;
+}
+
+
 Foam::tmp<Foam::volScalarField> Foam::meltdem::laserHeatSource::heatSource
 (
     const volScalarField& alphaMetal
@@ -227,7 +241,8 @@ Foam::tmp<Foam::volScalarField> Foam::meltdem::laserHeatSource::heatSource
     hitFraction_ = 0;
 
     const scalar t = mesh_.time().value();
-    if (!on(t) || power_*absorptivity_ <= 0)
+    const scalar lit = min(onFraction(), scalar(1));
+    if (lit <= 0 || power_*absorptivity_ <= 0)
     {
         return tq;
     }
@@ -266,7 +281,10 @@ Foam::tmp<Foam::volScalarField> Foam::meltdem::laserHeatSource::heatSource
         return tq;
     }
 
-    qi *= absorptivity_*power_/weighted;
+    const scalar target =
+        absorptivity_*power_*lit
+       *(scaleByHitFraction_ ? min(hitFraction_, scalar(1)) : scalar(1));
+    qi *= target/weighted;
     q.correctBoundaryConditions();
     absorbedPower_ = gSum(qi*mesh_.V());
     return tq;

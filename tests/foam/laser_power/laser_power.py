@@ -128,7 +128,8 @@ def main():
     root = tempfile.mkdtemp(prefix="laser_power_")
     z_top = LZ
     flat = (ZC < 50e-6).astype(float)  # interface on the face z = 50 um
-    base = dict(power=P, absorptivity=ETA, radius=R, direction="(0 0 -1)")
+    # tOn < 0: the step (-dt, 0] evaluated at t = 0 is lit (timeAveraged)
+    base = dict(power=P, absorptivity=ETA, radius=R, direction="(0 0 -1)", tOn=-1)
 
     # 1. flat surface, centred beam: convention (hit fraction 1) and eta P
     lz = dict(base, position=vec((100e-6, 100e-6, z_top)))
@@ -187,12 +188,21 @@ def main():
     # 4. off / no metal: zero
     lonoff = dict(base, position=vec((100e-6, 100e-6, z_top)), tOn=1e-4, tOff=2e-4)
     case = make_case(root, "onoff", flat, lonoff)
-    _, log = check_app(case, ["-times", "(0 1.5e-4 2e-4 3e-4)"])
+    # steps (t - dt, t] with dt = 1e-6 (controlDict): power scaled by the lit part (timeAveraged)
+    _, log = check_app(case, ["-times", "(0 1e-4 1.005e-4 1.5e-4 2e-4 2.005e-4 3e-4)"])
     rs = laser_lines(log)
-    ok &= check_absolute(TEST, "before tOn: absorbed [W]", rs[0]["absorbed"] + abs(rs[0]["integral"]), 0.0, 0.0)
-    ok &= check_relative(TEST, "between tOn and tOff: absorbed [W]", rs[1]["integral"], ETA * P, 1e-6)
-    ok &= check_absolute(TEST, "at tOff and after: absorbed [W]",
-                         abs(rs[2]["integral"]) + abs(rs[3]["integral"]), 0.0, 0.0)
+    ok &= check_absolute(TEST, "steps ending at 0 and at tOn (dark): absorbed [W]",
+                         abs(rs[0]["integral"]) + abs(rs[1]["integral"]), 0.0, 0.0)
+    ok &= check_relative(TEST, "step half after tOn: absorbed [W] = eta P / 2", rs[2]["integral"], ETA * P / 2, 1e-6)
+    ok &= check_relative(TEST, "between tOn and tOff: absorbed [W]", rs[3]["integral"], ETA * P, 1e-6)
+    ok &= check_relative(TEST, "step ending at tOff: absorbed [W]", rs[4]["integral"], ETA * P, 1e-6)
+    ok &= check_relative(TEST, "step half past tOff: absorbed [W] = eta P / 2", rs[5]["integral"], ETA * P / 2, 1e-6)
+    ok &= check_absolute(TEST, "after tOff: absorbed [W]", abs(rs[6]["integral"]), 0.0, 0.0)
+    case = make_case(root, "onoff_instant", flat, dict(lonoff, timeAveraged="no"))
+    _, log = check_app(case, ["-times", "(1e-4 1.005e-4 2e-4)"])
+    rs = laser_lines(log)
+    ok &= check_relative(TEST, "timeAveraged no: at tOn eta P, at tOff 0 [W]",
+                         rs[0]["integral"] + rs[1]["integral"] + rs[2]["integral"], 2 * ETA * P, 1e-6)
     case = make_case(root, "nometal", np.zeros(XC.size), dict(base, position=vec((100e-6, 100e-6, z_top))))
     _, log = check_app(case, ["-times", "(0)"])
     ok &= check_absolute(TEST, "no metal under the beam: absorbed [W]", abs(laser_lines(log)[0]["integral"]),
@@ -203,6 +213,19 @@ def main():
     _, log = check_app(case, ["-times", "(0)"])
     ok &= check_absolute(TEST, "beam 12 radii away from the metal: absorbed [W]",
                          abs(laser_lines(log)[0]["integral"]), 0.0, 0.0)
+
+    # grazing beam (metal slab x < 50 um, beam axis 30 um beyond its edge): exact eta P by default,
+    # eta P * hitFraction with scaleByHitFraction
+    graze = dict(base, position=vec((80e-6, 100e-6, z_top)))
+    case = make_case(root, "graze", side, graze)
+    _, log = check_app(case, ["-times", "(0)"])
+    rg = laser_lines(log)[0]
+    ok &= check_relative(TEST, "grazing beam, default: absorbed [W] = eta P", rg["integral"], ETA * P, 1e-6)
+    case = make_case(root, "graze_scaled", side, dict(graze, scaleByHitFraction="yes"))
+    _, log = check_app(case, ["-times", "(0)"])
+    rs = laser_lines(log)[0]
+    ok &= check_relative(TEST, f"grazing beam, scaleByHitFraction: absorbed [W] = eta P hitFraction "
+                         f"({rg['hit']:.4g})", rs["integral"], ETA * P * rg["hit"], 1e-6)
 
     # 5. moving paths
     x0, v, ts, te = 50e-6, 0.5, 1e-5, 2.1e-4
