@@ -145,6 +145,27 @@ def main():
     ok &= check_absolute(TEST, "flat, alphaWeighted (default): power in gas cells [W]",
                          float(np.sum(q[flat == 0])) * DX * DY * DZ, 0.0, 0.0)
 
+    # tilted beam (45 deg): the footprint grows by 1/cos, the facing factor is cos: hit fraction 1
+    ltilt = dict(base, position=vec((100e-6, 100e-6, 50e-6)), direction="(1 0 -1)")
+    case = make_case(root, "flat_tilted", flat, ltilt)
+    _, log = check_app(case, ["-times", "(0)", "-write"])
+    r = laser_lines(log)[0]
+    ok &= check_relative(TEST, "flat, beam tilted 45 deg: hit fraction", r["hit"], 1.0, 2e-3)
+    integ, q = field_integral(case, "0")
+    ok &= check_relative(TEST, "flat, beam tilted 45 deg: integral [W]", integ, ETA * P, 1e-6)
+    # beam along -x onto the face of a metal block (x > 120 um): a vertical wall absorbs eta P
+    wall = (XC > 120e-6).astype(float)
+    case = make_case(root, "wall", wall, dict(base, position=vec((LX, 100e-6, 50e-6)), direction="(1 0 0)"))
+    _, log = check_app(case, ["-times", "(0)"])
+    rw = laser_lines(log)[0]
+    ok &= check_relative(TEST, "beam (1 0 0) onto the x = 120 um face of a block: integral [W]",
+                         rw["integral"], ETA * P, 1e-6)
+    # beam pointing up from inside the metal: no surface faces it
+    case = make_case(root, "upward", flat, dict(base, position=vec((100e-6, 100e-6, 0.0)), direction="(0 0 1)"))
+    _, log = check_app(case, ["-times", "(0)"])
+    ok &= check_absolute(TEST, "beam (0 0 1) from below the surface: absorbed [W]",
+                         abs(laser_lines(log)[0]["integral"]), 0.0, 0.0)
+
     # 2. flat surface, beam off-centre and partly outside the box: still eta P (serial, np 2)
     loff = dict(base, position=vec((175e-6, 80e-6, z_top)), distribution="gradAlpha")
     case = make_case(root, "flat_off", flat, loff)
