@@ -21,7 +21,7 @@ import sys
 import numpy as np
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, os.path.join(HERE, "..", "..", "tests", "foam", "capillary"))
+sys.path.insert(0, os.path.join(HERE, "..", "..", "tests", "support"))
 import foamcase as fc  # noqa: E402
 
 M, G = fc.METAL, fc.GAS

@@ -8,7 +8,6 @@ import tempfile
 import numpy as np
 
 sys.path.insert(0, os.path.join(os.environ["MELTDEM_SOURCE_DIR"], "tests", "support"))
-sys.path.append(os.path.join(os.environ["MELTDEM_SOURCE_DIR"], "tests", "foam", "capillary"))
 import foamcase as fc  # noqa: E402
 from meltdem_report import check_relative  # noqa: E402
 

@@ -20,7 +20,7 @@ import tempfile
 import numpy as np
 
 SRC = os.environ.get("MELTDEM_SOURCE_DIR", os.path.join(os.path.dirname(__file__), "..", "..", ".."))
-for p in ("tests/support", "tests/foam/capillary", "tests/foam/rosenthal"):
+for p in ("tests/support", "tests/foam/rosenthal"):
     sys.path.insert(0, os.path.join(SRC, p))
 import foamcase as fc  # noqa: E402
 import rosenthal as R  # noqa: E402

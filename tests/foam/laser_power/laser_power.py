@@ -23,8 +23,6 @@ import numpy as np
 
 SRC = os.environ.get("MELTDEM_SOURCE_DIR", os.path.join(os.path.dirname(__file__), "..", "..", ".."))
 sys.path.insert(0, os.path.join(SRC, "tests", "support"))
-for p in ("tests/support", "tests/foam/capillary"):
-    sys.path.insert(0, os.path.join(SRC, p))
 import foamcase as fc  # noqa: E402
 from meltdem_report import check_relative, check_absolute, report  # noqa: E402
 

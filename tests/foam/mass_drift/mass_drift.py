@@ -27,7 +27,7 @@ import numpy as np
 
 src = os.environ["MELTDEM_SOURCE_DIR"]
 sys.path.insert(0, os.path.join(src, "tests", "support"))
-sys.path.insert(0, os.path.join(src, "tests", "foam", "capillary"))
+sys.path.insert(0, os.path.join(src, "tests", "support"))
 from meltdem_report import check_at_most, report  # noqa: E402
 import foamcase as fc  # noqa: E402
 

@@ -22,8 +22,7 @@ import tempfile
 import numpy as np
 
 SRC = os.environ.get("MELTDEM_SOURCE_DIR", os.path.join(os.path.dirname(__file__), "..", "..", ".."))
-for p in ("tests/support", "tests/foam/capillary"):
-    sys.path.insert(0, os.path.join(SRC, p))
+sys.path.insert(0, os.path.join(SRC, "tests", "support"))
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import foamcase as fc  # noqa: E402
 from meltdem_report import check_relative, report  # noqa: E402
