@@ -223,3 +223,48 @@ TEST(ConservationLedger, BadUse)
   EXPECT_THROW(ledger.begin_step(1.0, -1.0), std::invalid_argument);
   EXPECT_THROW(ledger.open_csv("/nonexistent-dir/x.csv"), std::runtime_error);
 }
+
+TEST(ConservationLedger, PendingFeedAndReferenceScale)
+{
+  // powder fed into the pending store, then inserted as a particle at rest in a gas at rest:
+  // the system balance needs the feed booked; the momentum totals are exactly 0, so the
+  // relative momentum error uses the reference scale instead of dividing by zero
+  const double m = kThesisMass, h = 48.35 * 300.0;
+  const auto run = [&](bool book_feed, const Amounts &scale) {
+    ConservationLedger l(MPI_COMM_SELF);
+    l.set_reference_scale(scale);
+    const Amounts gas{1e-6, 1e-6 * 3e5, 0.0, 0.0, 0.0};
+    const Amounts powder{m, m * h, 0.0, 0.0, 0.0};
+    // step 0: nothing pending; step 1: fed to pending; step 2: inserted; step 3: a stray impulse
+    for (int step = 0; step < 4; ++step) {
+      l.begin_step(step * 1e-5, 1e-5);
+      l.book(kContinuum, gas);
+      if (step == 1) {
+        l.book(kPending, powder);
+        if (book_feed) l.book(kFeed, powder);
+      }
+      if (step >= 2) {
+        ExchangeRecord r;
+        r.mass = m, r.h = h;
+        if (step == 3) r.v = Eigen::Vector3d(0.0, 1e-3, 0.0);  // momentum from nowhere
+        l.book_particle(r);
+      }
+      l.end_step();
+    }
+    return l.history();
+  };
+  const Amounts scale{0.0, 0.0, 1e-6, 1e-6, 1e-6};
+  const auto ok = run(true, scale);
+  for (const auto &s : ok)
+    for (int q : {kMass, kEnthalpy}) EXPECT_LE(std::abs(s.system_error[q]), 1e-15) << s.step << " " << names[q];
+  expect_absolute("inserted pending powder: system mass error", std::abs(ok[2].system_error[kMass]), 0.0, 1e-15);
+  // the stray momentum m * 1e-3 shows against the scale 1e-6, not as inf or NaN
+  expect_relative("momentum from nowhere / reference scale", std::abs(ok[3].system_error[kMomY]), m * 1e-3 / 1e-6, 1e-12);
+  const auto missing = run(false, scale);
+  EXPECT_GT(std::abs(missing[1].system_error[kMass]), 1e-3) << "unbooked feed not detected";
+  // no scale given: the automatic floor is the largest |total| seen, i.e. the stray momentum
+  // itself: the thesis form gives (0 - (M_new - 0)) / |M_new| = -1, never inf or NaN
+  const auto no_scale = run(true, Amounts{});
+  EXPECT_EQ(no_scale[3].system_error[kMomY], -1.0);
+  EXPECT_EQ(no_scale[2].system_error[kMomY], 0.0);
+}
