@@ -8,6 +8,7 @@
 #include <mpi.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -62,6 +63,8 @@ double worst_at(const ConservationLedger &l, Amounts LedgerStep::*field, int q, 
 TEST(ConservationLedger, ThesisParticleMeltBalancesClose)
 {
   ConservationLedger ledger(MPI_COMM_SELF);
+  // the CSV for plotting (coupling/tests/ledger_csv_check.py, scripts/plot_ledger.py)
+  if (const char *csv = std::getenv("MELTDEM_LEDGER_CSV")) ledger.open_csv(csv);
   SyntheticOptions o;
   run_synthetic_melt(ledger, o);
   const auto &h = ledger.history();
@@ -110,6 +113,12 @@ TEST(ConservationLedger, MissingBookingIsDetected)
     const double e = worst_at(ledger, &LedgerStep::continuum_error, kMass, &at);
     expect_absolute("step of the missing melt booking", static_cast<double>(at), 40.0, 0.0);
     EXPECT_GT(e, tol) << "missing melt not detected in the continuum mass balance";
+    // the thesis form exactly: (sources - (new - old)) / new = the melt that never arrived / new
+    const LedgerStep &s40 = ledger.history()[40];
+    double den = std::abs(s40.booked[kContinuum][kMass]);
+    for (int k = 0; k <= 40; ++k) den = std::max(den, std::abs(ledger.history()[k].system_total[kMass]));
+    expect_relative("eq. 2.20 at the missing booking = melt of the step / max(|mass_new|, largest total)",
+                    s40.continuum_error[kMass], s40.booked[kExchange][kMass] / den, 1e-10);
     EXPECT_GT(worst_at(ledger, &LedgerStep::system_error, kEnthalpy), tol);
     EXPECT_GT(worst_at(ledger, &LedgerStep::system_error, kMomY), tol);
     std::cout << "missing melt booking: continuum mass error " << e << " at step " << at << "\n";
