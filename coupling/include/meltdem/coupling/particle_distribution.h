@@ -1,0 +1,101 @@
+#pragma once
+// Particle -> cell distribution of the extensive quantities a particle hands to the
+// continuum (mass, enthalpy, momentum, absorbed heat). Thesis 3.2.3: depositing a whole
+// grain into the one cell holding its centre spikes density/velocity/enthalpy there and
+// collapses the fluid time step (fig. 3.7) once cells are as small as grains, so the
+// share can be spread over several cells. Three models:
+//   centre     : everything to the cell holding the particle centre;
+//   neighbours : centre cell + occupied face neighbours (thesis fig. 3.9), volume-weighted
+//                as thesis eq. 3.7  w_i = V_i / sum_j V_j;
+//   overlap    : w_i = |sphere ∩ cell_i| / sum_j |sphere ∩ cell_j| (powder-bed regime,
+//                cells 3-10x smaller than grains); the part outside the mesh is dropped
+//                and the rest renormalised.
+// Weights are normalised so that their (exact) sum is 1 to round-off: the caller's
+// distributed quantity q * w_i sums back to q to round-off.
+#include <Eigen/Core>
+
+#include <string>
+#include <vector>
+
+namespace meltdem::coupling {
+
+// The mesh as the distribution sees it; the OpenFOAM side implements it on a polyMesh
+// (cell bounding boxes stand in for the cells in `overlap`, exact for hexahedral
+// axis-aligned cells such as blockMesh / snappy background cells).
+class DistributionMesh {
+ public:
+  struct Face {
+    long neighbour;         // cell across the face
+    Eigen::Vector3d centre; // face centre
+    Eigen::Vector3d normal; // unit normal pointing out of the owner cell
+  };
+  virtual ~DistributionMesh() = default;
+  // cell holding point p, -1 when p is outside the mesh
+  virtual long find_cell(const Eigen::Vector3d &p) const = 0;
+  virtual void cell_bounds(long cell, Eigen::Vector3d &lo, Eigen::Vector3d &hi) const = 0;
+  virtual Eigen::Vector3d cell_centre(long cell) const = 0;
+  virtual double cell_volume(long cell) const = 0;
+  // internal faces of `cell` (boundary faces have no neighbour and are left out)
+  virtual void face_neighbours(long cell, std::vector<Face> &faces) const = 0;
+  // every cell whose bounding box intersects the sphere (a superset is allowed)
+  virtual void cells_in_sphere(const Eigen::Vector3d &c, double r, std::vector<long> &cells) const = 0;
+};
+
+// Rectilinear (possibly non-uniform) Cartesian grid, cell id = i + nx (j + ny k).
+class CartesianGridMesh : public DistributionMesh {
+ public:
+  // node coordinates per axis, strictly increasing, >= 2 each
+  CartesianGridMesh(std::vector<double> x, std::vector<double> y, std::vector<double> z);
+  // uniform grid of n[0] x n[1] x n[2] cells spanning [lo, hi]
+  static CartesianGridMesh uniform(const Eigen::Vector3d &lo, const Eigen::Vector3d &hi, int nx, int ny, int nz);
+
+  long find_cell(const Eigen::Vector3d &p) const override;
+  void cell_bounds(long cell, Eigen::Vector3d &lo, Eigen::Vector3d &hi) const override;
+  Eigen::Vector3d cell_centre(long cell) const override;
+  double cell_volume(long cell) const override;
+  void face_neighbours(long cell, std::vector<Face> &faces) const override;
+  void cells_in_sphere(const Eigen::Vector3d &c, double r, std::vector<long> &cells) const override;
+
+  long n_cells() const { return long(n_[0]) * n_[1] * n_[2]; }
+  long index(int i, int j, int k) const { return i + long(n_[0]) * (j + long(n_[1]) * k); }
+
+ private:
+  std::vector<double> nodes_[3];
+  int n_[3];
+  void ijk(long cell, int &i, int &j, int &k) const;
+};
+
+enum class DistributionModel { Centre, Neighbours, Overlap };
+
+// "centre" | "neighbours" | "overlap"; anything else throws std::invalid_argument naming the valid ones
+DistributionModel parse_distribution_model(const std::string &name);
+const char *to_string(DistributionModel model);
+
+struct CellWeight {
+  long cell;
+  double weight;
+};
+
+// Weights of the particle (centre c, radius r > 0) over the mesh cells, appended to a
+// cleared `out`. Returns false (out empty) when the centre lies outside the mesh, or,
+// for `overlap`, when nothing of the sphere lies inside it: the caller books outflow.
+// Throws std::invalid_argument for r <= 0 or a non-finite centre/radius.
+bool distribute_particle(const DistributionMesh &mesh, DistributionModel model, const Eigen::Vector3d &c,
+                         double r, std::vector<CellWeight> &out);
+
+// Volume of sphere(c, r) ∩ box [lo, hi]. Shortcuts for disjoint / box-inside / sphere-inside;
+// otherwise V = ∫ A(x) dx where A(x), the area of the slice disk ∩ rectangle, is exact
+// (inclusion-exclusion of closed-form disk ∩ quadrant areas), integrated by 16-point
+// Gauss-Legendre on the sub-intervals between the kinks of A (where the slice circle meets
+// a rectangle edge or corner), each under x = a + (b-a)(1 - cos(pi u))/2 so the square-root
+// behaviour at the kinks is smoothed: ~1e-13 relative in the tests.
+double sphere_box_overlap(const Eigen::Vector3d &c, double r, const Eigen::Vector3d &lo, const Eigen::Vector3d &hi);
+
+// Area of the disk y^2 + z^2 <= R^2 (centred at 0) with y <= b, z <= c (closed form).
+double disk_quadrant_area(double R, double b, double c);
+
+// Scale positive raw weights to sum 1: divide by their compensated sum, then put the
+// residual 1 - sum(w) (compensated) onto the largest weight.
+void normalise_weights(std::vector<CellWeight> &weights);
+
+}  // namespace meltdem::coupling

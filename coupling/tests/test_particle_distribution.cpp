@@ -1,0 +1,268 @@
+// Particle -> cell distribution (thesis 3.2.3, eq. 3.7): weights sum to 1, conservation,
+// sphere-box overlap against analytic sphere / cap / octant volumes, domain clipping.
+#include "meltdem/coupling/particle_distribution.h"
+#include "meltdem/coupling/exact_sum.h"
+#include "validation_report.h"
+
+#include <chrono>
+#include <cmath>
+#include <iostream>
+#include <limits>
+#include <random>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+using namespace meltdem::coupling;
+using meltdem::testing::expect_absolute;
+using meltdem::testing::expect_relative;
+using Eigen::Vector3d;
+
+namespace {
+
+const double kEps = std::numeric_limits<double>::epsilon();
+
+double sphere_volume(double r) { return 4.0 / 3.0 * M_PI * r * r * r; }
+// volume of the cap of height h cut from a sphere of radius r
+double cap_volume(double r, double h) { return M_PI * h * h * (3.0 * r - h) / 3.0; }
+
+// sum of the raw sphere-cell overlaps over the mesh (what `overlap` normalises by)
+double overlap_in_mesh(const DistributionMesh &mesh, const Vector3d &c, double r)
+{
+  std::vector<long> cells;
+  mesh.cells_in_sphere(c, r, cells);
+  ExactSum s;
+  Vector3d lo, hi;
+  for (long cell : cells) {
+    mesh.cell_bounds(cell, lo, hi);
+    s.add(sphere_box_overlap(c, r, lo, hi));
+  }
+  return s.value();
+}
+
+double exact_weight_sum(const std::vector<CellWeight> &w)
+{
+  ExactSum s;
+  for (const auto &cw : w) s.add(cw.weight);
+  return s.value();
+}
+
+}  // namespace
+
+TEST(ParticleDistribution, DiskQuadrantArea)
+{
+  const double R = 1.3;
+  expect_relative("disk ∩ {y<=0,z<=0} vs pi R^2/4", disk_quadrant_area(R, 0.0, 0.0), M_PI * R * R / 4.0, 1e-15);
+  expect_relative("disk ∩ {y<=R,z<=R} vs pi R^2", disk_quadrant_area(R, 2.0, 5.0), M_PI * R * R, 1e-15);
+  // circular segment beyond y = b: R^2 acos(b/R) - b sqrt(R^2 - b^2)
+  const double b = 0.4, seg = R * R * std::acos(b / R) - b * std::sqrt(R * R - b * b);
+  expect_relative("disk ∩ {y<=b} vs pi R^2 - segment", disk_quadrant_area(R, b, 10.0), M_PI * R * R - seg, 1e-14);
+  expect_relative("disk ∩ {z<=-b} vs segment", disk_quadrant_area(R, 10.0, -b), seg, 1e-14);
+  // quadrant with a corner inside: symmetric in (b, c)
+  expect_relative("G(b,c) = G(c,b)", disk_quadrant_area(R, 0.3, -0.7), disk_quadrant_area(R, -0.7, 0.3), 1e-14);
+}
+
+TEST(ParticleDistribution, OverlapSingleBoxAnalytic)
+{
+  const double r = 1.0;
+  const Vector3d c(0.1, -0.2, 0.3);
+  const Vector3d big(5, 5, 5);
+  expect_relative("sphere inside box", sphere_box_overlap(c, r, c - big, c + big), sphere_volume(r), 1e-15);
+  // octant / quadrant / half through the centre: exact fractions by symmetry
+  expect_relative("octant (x,y,z >= c)", sphere_box_overlap(c, r, c, c + big), sphere_volume(r) / 8.0, 1e-13);
+  expect_relative("quadrant (x,y >= c)", sphere_box_overlap(c, r, c - Vector3d(0, 0, 5), c + big),
+                  sphere_volume(r) / 4.0, 1e-13);
+  expect_relative("half (z >= c)", sphere_box_overlap(c, r, c - Vector3d(5, 5, 0), c + big), sphere_volume(r) / 2.0,
+                  1e-13);
+  // sphere-halfspace caps, cut by one face of a large box
+  for (double h : {0.05, 0.3, 0.77, 1.0, 1.4, 1.95}) {
+    const Vector3d lo = c + Vector3d(-5, -5, r - h);
+    expect_relative("cap h/r=" + std::to_string(h), sphere_box_overlap(c, r, lo, c + big), cap_volume(r, h), 1e-12);
+  }
+  // slab between two planes = difference of two caps
+  {
+    const double h1 = 0.4, h2 = 1.7;
+    const Vector3d lo = c + Vector3d(-5, -5, r - h2), hi = c + Vector3d(5, 5, r - h1);
+    expect_relative("slab (cap 1.7 - cap 0.4)", sphere_box_overlap(c, r, lo, hi), cap_volume(r, h2) - cap_volume(r, h1),
+                    1e-12);
+  }
+  expect_absolute("disjoint box", sphere_box_overlap(c, r, c + Vector3d(1.01, -5, -5), c + big), 0.0, 0.0);
+  const Vector3d small(0.2, 0.2, 0.2);
+  expect_relative("box inside sphere", sphere_box_overlap(c, r, c - small, c + small), 0.064, 1e-15);
+}
+
+TEST(ParticleDistribution, OverlapSumsToSphereVolume)
+{
+  // powder-bed regime: 3, 6.5 and 10 cells per diameter, sphere well inside the mesh
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(-0.5, 0.5);
+  for (double cells_per_d : {3.0, 6.5, 10.0}) {
+    const double r = 1.0, h = 2.0 * r / cells_per_d;
+    const int n = int(std::ceil(6.0 * r / h));
+    const auto mesh = CartesianGridMesh::uniform(Vector3d(-3, -3, -3), Vector3d(-3, -3, -3) + Vector3d::Constant(n * h),
+                                                 n, n, n);
+    double worst = 0.0;
+    for (int t = 0; t < 20; ++t) {
+      const Vector3d c(u(rng), u(rng), u(rng));
+      worst = std::max(worst, std::abs(overlap_in_mesh(mesh, c, r) / sphere_volume(r) - 1.0));
+    }
+    expect_absolute("max |sum overlap / (4/3 pi r^3) - 1|, " + std::to_string(cells_per_d) + " cells/d (20 spheres)",
+                    worst, 0.0, 1e-12);
+  }
+}
+
+TEST(ParticleDistribution, OverlapClippedAtDomainBoundary)
+{
+  // domain floor at z = 0, sphere centred at height d < r: the mesh holds 4/3 pi r^3 - cap(r - d)
+  const double r = 1.0, h = 0.25;
+  const auto mesh = CartesianGridMesh::uniform(Vector3d(-2, -2, 0), Vector3d(2, 2, 3), 16, 16, 12);
+  for (double d : {0.1, 0.5, 0.9}) {
+    const Vector3d c(0.13, -0.07, d);
+    const double inside = sphere_volume(r) - cap_volume(r, r - d);
+    const double raw = overlap_in_mesh(mesh, c, r);
+    expect_relative("overlap in mesh, centre " + std::to_string(d) + " r above the floor", raw, inside, 1e-12);
+    std::vector<CellWeight> w;
+    ASSERT_TRUE(distribute_particle(mesh, DistributionModel::Overlap, c, r, w));
+    expect_absolute("weights sum (clipped, renormalised)", exact_weight_sum(w), 1.0, 1e-15);
+    // each weight is the cell's overlap over the clipped volume
+    double worst = 0.0;
+    Vector3d lo, hi;
+    for (const auto &cw : w) {
+      mesh.cell_bounds(cw.cell, lo, hi);
+      worst = std::max(worst, std::abs(cw.weight - sphere_box_overlap(c, r, lo, hi) / inside));
+    }
+    expect_absolute("max |w_i - V_i/V_inside|", worst, 0.0, 1e-13);
+  }
+  // centred on a domain corner: 1/8 of the sphere is inside
+  const Vector3d corner(-2, -2, 0);
+  expect_relative("sphere on a domain corner: overlap in mesh vs V/8", overlap_in_mesh(mesh, corner, r),
+                  sphere_volume(r) / 8.0, 1e-13);
+  (void)h;
+}
+
+TEST(ParticleDistribution, NeighboursEq37ByHand)
+{
+  // non-uniform grid so eq. 3.7 differs from the 1/n rule (eq. 3.6)
+  const CartesianGridMesh mesh({0, 1, 3, 4}, {0, 2, 3, 5}, {0, 1, 2, 4});
+  std::vector<CellWeight> w;
+  // centre cell (1,1,1): [1,3]x[2,3]x[1,2], V = 2; the particle pokes through x = 3 and y = 3:
+  // (2,1,1) V = 1 and (1,2,1) V = 4 -> weights 2/7, 1/7, 4/7
+  ASSERT_TRUE(distribute_particle(mesh, DistributionModel::Neighbours, Vector3d(2.8, 2.9, 1.5), 0.3, w));
+  ASSERT_EQ(w.size(), 3u);
+  auto weight_of = [&](long cell) {
+    for (const auto &cw : w)
+      if (cw.cell == cell) return cw.weight;
+    return -1.0;
+  };
+  expect_relative("w centre (1,1,1) = 2/7", weight_of(mesh.index(1, 1, 1)), 2.0 / 7.0, 1e-15);
+  expect_relative("w x+ (2,1,1) = 1/7", weight_of(mesh.index(2, 1, 1)), 1.0 / 7.0, 1e-15);
+  expect_relative("w y+ (1,2,1) = 4/7", weight_of(mesh.index(1, 2, 1)), 4.0 / 7.0, 1e-15);
+  // through z = 2 only: (1,1,2) V = 4 -> 2/6, 4/6
+  ASSERT_TRUE(distribute_particle(mesh, DistributionModel::Neighbours, Vector3d(2.0, 2.5, 1.9), 0.15, w));
+  ASSERT_EQ(w.size(), 2u);
+  expect_relative("w centre = 1/3", weight_of(mesh.index(1, 1, 1)), 1.0 / 3.0, 1e-15);
+  expect_relative("w z+ (1,1,2) = 2/3", weight_of(mesh.index(1, 1, 2)), 2.0 / 3.0, 1e-15);
+  // inside its cell: centre only
+  ASSERT_TRUE(distribute_particle(mesh, DistributionModel::Neighbours, Vector3d(2.0, 2.5, 1.5), 0.2, w));
+  expect_absolute("particle inside its cell: number of cells", double(w.size()), 1.0, 0.0);
+  // thesis fig. 3.10: particle larger than a uniform cell -> 7 cells of 1/7 = 0.1429
+  const auto uni = CartesianGridMesh::uniform(Vector3d(0, 0, 0), Vector3d(5, 5, 5), 5, 5, 5);
+  ASSERT_TRUE(distribute_particle(uni, DistributionModel::Neighbours, Vector3d(2.5, 2.5, 2.5), 0.8, w));
+  expect_absolute("fig. 3.10: number of occupied cells", double(w.size()), 7.0, 0.0);
+  for (const auto &cw : w) expect_relative("fig. 3.10: w = 1/7", cw.weight, 1.0 / 7.0, 1e-15);
+  // at the domain floor the boundary face has no neighbour: 6 cells of 1/6
+  ASSERT_TRUE(distribute_particle(uni, DistributionModel::Neighbours, Vector3d(2.5, 2.5, 0.5), 0.8, w));
+  expect_absolute("at the floor: number of occupied cells", double(w.size()), 6.0, 0.0);
+  expect_absolute("at the floor: weights sum", exact_weight_sum(w), 1.0, 1e-15);
+}
+
+TEST(ParticleDistribution, WeightsSumToOneAndMassConserved)
+{
+  // random particles over a non-uniform grid, many near or across the domain boundary
+  std::vector<double> x{0.0}, y{0.0}, z{0.0};
+  std::mt19937_64 rng(42);
+  std::uniform_real_distribution<double> dh(0.5, 1.5);
+  for (int i = 0; i < 20; ++i) x.push_back(x.back() + dh(rng));
+  for (int i = 0; i < 15; ++i) y.push_back(y.back() + dh(rng));
+  for (int i = 0; i < 12; ++i) z.push_back(z.back() + dh(rng));
+  const CartesianGridMesh mesh(x, y, z);
+  std::uniform_real_distribution<double> ux(-0.5, x.back() + 0.5), uy(-0.5, y.back() + 0.5), uz(-0.5, z.back() + 0.5);
+  std::uniform_real_distribution<double> ur(0.1, 4.0), um(1e-9, 3e-9);
+
+  for (auto model : {DistributionModel::Centre, DistributionModel::Neighbours, DistributionModel::Overlap}) {
+    std::vector<double> cell_mass(mesh.n_cells(), 0.0);
+    ExactSum handed;
+    double worst_exact = 0.0, worst_naive = 0.0;
+    std::size_t max_cells = 0;
+    int outside = 0;
+    std::vector<CellWeight> w;
+    for (int p = 0; p < 3000; ++p) {
+      const Vector3d c(ux(rng), uy(rng), uz(rng));
+      const double r = ur(rng), m = um(rng);
+      if (!distribute_particle(mesh, model, c, r, w)) {
+        ++outside;
+        EXPECT_TRUE(w.empty());
+        continue;
+      }
+      double naive = 0.0;
+      for (const auto &cw : w) {
+        naive += cw.weight;
+        EXPECT_GT(cw.weight, 0.0);
+        cell_mass[cw.cell] += m * cw.weight;
+      }
+      worst_exact = std::max(worst_exact, std::abs(exact_weight_sum(w) - 1.0));
+      worst_naive = std::max(worst_naive, std::abs(naive - 1.0) / (kEps * w.size()));
+      max_cells = std::max(max_cells, w.size());
+      handed.add(m);
+    }
+    const std::string name = to_string(model);
+    expect_absolute(name + ": max |sum w - 1| (compensated sum), 3000 particles", worst_exact, 0.0, 1e-15);
+    expect_absolute(name + ": max |naive sum w - 1| / (n_cells eps)", worst_naive, 0.0, 1.0);
+    ExactSum deposited;
+    for (double mc : cell_mass) deposited.add(mc);
+    expect_relative(name + ": mass in cells vs mass handed over", deposited.value(), handed.value(), 1e-14);
+    std::cout << "NOTE " << name << ": " << outside << " of 3000 centres outside the mesh (booked as outflow), "
+              << "up to " << max_cells << " cells per particle" << std::endl;
+    EXPECT_GT(outside, 0);
+  }
+}
+
+TEST(ParticleDistribution, BadInput)
+{
+  const auto mesh = CartesianGridMesh::uniform(Vector3d(0, 0, 0), Vector3d(1, 1, 1), 4, 4, 4);
+  std::vector<CellWeight> w{{3, 0.5}};
+  EXPECT_THROW(distribute_particle(mesh, DistributionModel::Overlap, Vector3d(0.5, 0.5, 0.5), 0.0, w),
+               std::invalid_argument);
+  EXPECT_THROW(distribute_particle(mesh, DistributionModel::Centre, Vector3d(0.5, NAN, 0.5), 0.1, w),
+               std::invalid_argument);
+  EXPECT_FALSE(distribute_particle(mesh, DistributionModel::Overlap, Vector3d(1.5, 0.5, 0.5), 0.1, w));
+  EXPECT_TRUE(w.empty());
+  EXPECT_THROW(parse_distribution_model("multicell"), std::invalid_argument);
+  EXPECT_EQ(parse_distribution_model("neighbours"), DistributionModel::Neighbours);
+  EXPECT_THROW(CartesianGridMesh({0, 1, 1}, {0, 1}, {0, 1}), std::invalid_argument);
+}
+
+TEST(ParticleDistribution, CostPerParticleNote)
+{
+  // not a benchmark: a note of the order of magnitude (no assertion on time)
+  for (double cells_per_d : {0.5, 1.0, 2.0, 4.0, 8.0}) {
+    const double r = 1.0, h = 2.0 * r / cells_per_d;
+    const int n = std::max(4, int(std::ceil(8.0 * r / h)));
+    const auto mesh = CartesianGridMesh::uniform(Vector3d::Zero(), Vector3d::Constant(n * h), n, n, n);
+    std::mt19937_64 rng(3);
+    std::uniform_real_distribution<double> u(0.4 * n * h, 0.6 * n * h);
+    std::vector<CellWeight> w;
+    for (auto model : {DistributionModel::Centre, DistributionModel::Neighbours, DistributionModel::Overlap}) {
+      const int np = model == DistributionModel::Overlap ? 200 : 20000;
+      std::size_t cells = 0;
+      const auto t0 = std::chrono::steady_clock::now();
+      for (int p = 0; p < np; ++p) {
+        distribute_particle(mesh, model, Vector3d(u(rng), u(rng), u(rng)), r, w);
+        cells += w.size();
+      }
+      const double us = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count() / np;
+      std::cout << "NOTE cost " << to_string(model) << " @ " << cells_per_d << " cells/d: " << us
+                << " us/particle, " << double(cells) / np << " cells/particle" << std::endl;
+    }
+  }
+}
