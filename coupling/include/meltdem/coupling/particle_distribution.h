@@ -85,10 +85,12 @@ bool distribute_particle(const DistributionMesh &mesh, DistributionModel model, 
 
 // Volume of sphere(c, r) ∩ box [lo, hi]. Shortcuts for disjoint / box-inside / sphere-inside;
 // otherwise V = ∫ A(x) dx where A(x), the area of the slice disk ∩ rectangle, is exact
-// (inclusion-exclusion of closed-form disk ∩ quadrant areas), integrated by 16-point
-// Gauss-Legendre on the sub-intervals between the kinks of A (where the slice circle meets
-// a rectangle edge or corner), each under x = a + (b-a)(1 - cos(pi u))/2 so the square-root
-// behaviour at the kinks is smoothed: ~1e-13 relative in the tests.
+// (inclusion-exclusion of closed-form disk ∩ quadrant areas), integrated on the sub-intervals
+// between the kinks of A (where the slice circle meets a rectangle edge or corner), each under
+// x = a + (b-a)(1 - cos(pi u))/2 (smooths the square-root behaviour at the kinks), by 16-point
+// Gauss-Legendre with adaptive bisection in u to 1e-14 r^3 (a slice circle that barely clears
+// an edge needs it). Measured: 1e-15 relative on whole spheres, < 1e-12 on caps/octants.
+// Cost ~10-15 us per cut cell (see the CostPerParticleNote test).
 double sphere_box_overlap(const Eigen::Vector3d &c, double r, const Eigen::Vector3d &lo, const Eigen::Vector3d &hi);
 
 // Area of the disk y^2 + z^2 <= R^2 (centred at 0) with y <= b, z <= c (closed form).
