@@ -12,6 +12,10 @@
 //                and the rest renormalised.
 // Weights are normalised so that their (exact) sum is 1 to round-off: the caller's
 // distributed quantity q * w_i sums back to q to round-off.
+// Cost per particle (one core, Release, uniform grid; test CostPerParticleNote): centre
+// 0.04-0.07 us; neighbours 0.13-0.2 us; overlap 0.07 / 0.18 / 0.5 / 1.8 / 6.6 ms at 0.5 / 1 /
+// 2 / 4 / 8 cells per diameter (4 / 8 / 22 / 85 / 444 cells), ~15 us per cell the sphere
+// surface cuts: cache the weights of particles that did not move a cell fraction if needed.
 #include <Eigen/Core>
 
 #include <string>
