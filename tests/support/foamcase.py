@@ -336,3 +336,14 @@ def contour_radii(grid, alpha, xc, yc, level=0.5):
     plt.close("all")
     pts = np.vstack(segs)
     return np.hypot(pts[:, 0] - xc, pts[:, 1] - yc)
+
+
+def finish(ok, work, keep=False, shown=None):
+    """End of a case-based test: remove the scratch folder when the test passed (and it is
+    not to be kept), otherwise say where the cases are; returns the exit code."""
+    import shutil
+    if ok and not keep:
+        shutil.rmtree(work)
+    else:
+        print("case(s) kept in", shown or work)
+    return 0 if ok else 1

@@ -11,7 +11,6 @@ usage: bad_input.py [--keep]
 """
 import os
 import re
-import shutil
 import subprocess
 import sys
 import tempfile
@@ -123,11 +122,7 @@ def main():
                      f"rc {rc}, {'FatalIOError' if text else 'no FatalIOError'}, "
                      f"{'names it' if named else 'does not name it'}",
                      "FatalIOError naming the entry", "exact", good)
-    if ok and not keep:
-        shutil.rmtree(work)
-    else:
-        print("cases kept in", work)
-    return 0 if ok else 1
+    return fc.finish(ok, work, keep)
 
 
 if __name__ == "__main__":

@@ -19,7 +19,6 @@ metal mass is only as conservative as that linear solve (1e-8 gives ~1e-8 drift)
 usage: mass_drift.py [--keep]
 """
 import os
-import shutil
 import sys
 import tempfile
 
@@ -137,11 +136,7 @@ def main():
           f"exchanged")
     ok &= check_at_most(TEST, "enthalpy balance error of the dam break with melting, max over steps, "
                         "relative to H0", drift_h, 1e-10)
-    if ok and not keep:
-        shutil.rmtree(work)
-    else:
-        print("case kept in", case)
-    return 0 if ok else 1
+    return fc.finish(ok, work, keep, shown=case)
 
 
 if __name__ == "__main__":

@@ -86,11 +86,7 @@ def main():
     print("momentum change", bal["momentum_x"][-1], bal["momentum_y"][-1], "error",
           bal["momentumError_x"][-1], bal["momentumError_y"][-1])
     ok &= check_at_most(test, "momentum balance error at t_end / exchanged impulse", mom, 0.01)
-    if ok and not keep:
-        shutil.rmtree(work)
-    else:
-        print("case kept in", case)
-    return 0 if ok else 1
+    return fc.finish(ok, work, keep, shown=case)
 
 
 if __name__ == "__main__":

@@ -100,11 +100,7 @@ def main():
     share = abs(adv) / (abs(adv) + abs(cond))
     ok &= report(TEST, "share of the heat advected through the atmosphere (> 0.01)", share, "> 0.01",
                  "bound", share > 0.01)
-    if ok and not keep:
-        shutil.rmtree(work)
-    else:
-        print("case kept in", case)
-    return 0 if ok else 1
+    return fc.finish(ok, work, keep, shown=case)
 
 
 if __name__ == "__main__":

@@ -16,7 +16,6 @@ relative to the heat that entered) -- an energy-conservation check of the conduc
 usage: stefan.py [--keep]
 """
 import os
-import shutil
 import sys
 import tempfile
 
@@ -140,11 +139,7 @@ def main():
         if nx == 25:
             ok &= check_at_most(TEST, "enthalpy balance error of the conduction run "
                                 "(max over steps, relative to the heat exchanged), 40 um cells", rel, 1e-8)
-    if ok and not keep:
-        shutil.rmtree(work)
-    else:
-        print("cases kept in", work)
-    return 0 if ok else 1
+    return fc.finish(ok, work, keep)
 
 
 if __name__ == "__main__":

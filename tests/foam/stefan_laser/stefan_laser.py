@@ -15,7 +15,6 @@ Checks (meltdemBalance's balance.csv):
 usage: stefan_laser.py [--keep]
 """
 import os
-import shutil
 import sys
 import tempfile
 
@@ -96,11 +95,7 @@ def main():
     ok &= report(TEST, "molten metal area at tOff [um2] (> 0)", molten * 1e12, "> 0", "bound", molten > 0)
     ok &= report(TEST, "metal mass change (flow off)", float(np.max(np.abs(b["massErrorRel"]))), 0.0,
                  "1e-15", float(np.max(np.abs(b["massErrorRel"]))) <= 1e-15)
-    if ok and not keep:
-        shutil.rmtree(work)
-    else:
-        print("case kept in", case)
-    return 0 if ok else 1
+    return fc.finish(ok, work, keep, shown=case)
 
 
 if __name__ == "__main__":
