@@ -30,6 +30,33 @@ def run(text, np=1, check=True, cwd=None, timeout=300):
     return p.returncode, p.stdout
 
 
+def run_file(path, variables=None, np=1, check=True, timeout=300):
+    """Run an input file with -var NAME VALUE for each item of variables, in a scratch
+    folder; returns (returncode, stdout+stderr)."""
+    cmd = [LMP, "-in", os.path.abspath(path), "-log", "none"]
+    for name, value in (variables or {}).items():
+        cmd += ["-var", name, str(value)]
+    if np > 1:
+        cmd = ["mpirun", "-np", str(np)] + cmd
+    with tempfile.TemporaryDirectory() as d:
+        p = subprocess.run(cmd, cwd=d, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                           text=True, timeout=timeout)
+    if check and p.returncode != 0:
+        print(p.stdout[-4000:])
+        raise SystemExit(f"meltdem-lmp failed with exit code {p.returncode}")
+    return p.returncode, p.stdout
+
+
+def printed_value(out, key):
+    """The number printed by an input line 'print "KEY value"'."""
+    for line in out.splitlines():
+        w = line.split()
+        if len(w) == 2 and w[0] == key:
+            return float(w[1])
+    print(out[-2000:])
+    raise SystemExit(f"no '{key}' line in the output")
+
+
 def thermo_runs(out, first="Step"):
     """Thermo rows grouped per run: a list (one per run) of lists of dicts (columns by name)."""
     runs, rows, cols = [], None, None

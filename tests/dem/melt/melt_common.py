@@ -4,7 +4,7 @@ import sys
 
 sys.path.insert(0, os.path.join(os.environ["MELTDEM_SOURCE_DIR"], "tests", "support"))
 from meltdem_report import check_absolute, check_at_most, check_relative, report  # noqa: E402,F401
-from lammps_run import LMP, check_errors, run, thermo_rows  # noqa: E402,F401
+from lammps_run import LMP, check_errors, printed_value as value, run, thermo_rows as thermo  # noqa: E402,F401
 
 
 # a single particle in a large periodic box, SI units, radius changes allowed
@@ -17,17 +17,3 @@ create_box 1 box
 comm_modify vel yes
 neighbor 1e-4 bin
 """
-
-
-def thermo(out, first="Step"):
-    """All thermo rows of all runs as a list of dicts (columns by name)."""
-    return thermo_rows(out, first)
-
-
-def value(out, key):
-    """The number printed by an input line 'print "KEY value"'."""
-    for line in out.splitlines():
-        w = line.split()
-        if len(w) == 2 and w[0] == key:
-            return float(w[1])
-    raise SystemExit(f"no '{key}' line in the output")

@@ -1,11 +1,10 @@
 #!/usr/bin/python3
 """granular/powder must refuse bad input with a LAMMPS error naming the problem."""
-import os, subprocess, sys
+import os, sys
 sys.path.insert(0, os.environ['MELTDEM_SOURCE_DIR'] + '/tests/support')
-from meltdem_report import report
+from lammps_run import check_errors
 
 T = "dem.restitution.bad_input"
-BIN = os.path.join(os.environ['MELTDEM_BIN'], 'meltdem-lmp')
 HEAD = """units {units}
 atom_style sphere
 comm_modify vel yes
@@ -31,12 +30,5 @@ cases = [
     ("non-SI units", "metal", "pair_coeff * * hertz/material 200e9 0.5 0.3 damping tsuji tangential linear_nohistory 1.0 0.0\nrun 0\n",
      "requires units si"),
 ]
-ok = True
-for what, units, tail, expect in cases:
-    with open('/tmp/meltdem_pair_bad.in', 'w') as f:
-        f.write(HEAD.format(units=units) + tail)
-    out = subprocess.run([BIN, '-log', 'none', '-in', '/tmp/meltdem_pair_bad.in'], capture_output=True, text=True)
-    text = out.stdout + out.stderr
-    got = out.returncode != 0 and expect in text
-    ok &= report(T, f"{what}: error containing '{expect}'", "yes" if got else "no", "yes", "exact", got)
+ok = check_errors(T, [(what, HEAD.format(units=units) + tail, expect) for what, units, tail, expect in cases])
 sys.exit(0 if ok else 1)

@@ -6,27 +6,21 @@ the prescribed e within 1 %: one type (steel), and two types (steel, 7800 kg/m3 
 110 GPa/4430 kg/m3 alloy) whose 1-1, 2-2 and explicitly set 1-2 coefficients all differ,
 so a wrongly mixed or ignored 1-2 pair would show. tsuji/alpha for 1-2 vs e(alpha) from
 scipy."""
-import os, subprocess, sys
+import os, sys
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.environ['MELTDEM_SOURCE_DIR'] + '/tests/support')
 sys.path.insert(0, HERE)
 from meltdem_report import check_relative, report
+from lammps_run import printed_value, run_file
 from hertz_ref import restitution_for_alpha
 
 T = "dem.restitution.polydisperse"
-BIN = os.path.join(os.environ['MELTDEM_BIN'], 'meltdem-lmp')
 
 
 def run(d1, d2, t1, t2, v, e11, e22, e12, damp12="tsuji", dt=1e-10):
     args = dict(d1=d1, d2=d2, t1=t1, t2=t2, v=v, e11=e11, e22=e22, e12=e12, damp12=damp12, dt=dt, n=int(3e-7 / dt))
-    cmd = [BIN, '-log', 'none', '-in', os.path.join(HERE, 'in.poly_head_on')]
-    for k, val in args.items():
-        cmd += ['-var', k, str(val)]
-    out = subprocess.run(cmd, capture_output=True, text=True, cwd='/tmp')
-    for line in out.stdout.splitlines():
-        if line.startswith('RESULT'):
-            return float(line.split()[1])
-    sys.exit(f"no RESULT from meltdem-lmp:\n{out.stdout[-2000:]}\n{out.stderr[-2000:]}")
+    _, out = run_file(os.path.join(HERE, 'in.poly_head_on'), args)
+    return printed_value(out, "RESULT")
 
 
 ok = True

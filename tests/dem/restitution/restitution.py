@@ -3,24 +3,18 @@
 speed 2 and 20 m/s, dt = 1e-10 s (t_c / dt ~ 800 at 2 m/s): pair_style granular/powder
 with 'damping tsuji' must return the prescribed e within 1 %; tsuji/alpha 1.5 must give
 coupling::restitution_for_alpha(1.5) = 0.05833. Stock granular's biased e is printed."""
-import os, subprocess, sys
+import os, sys
 sys.path.insert(0, os.environ['MELTDEM_SOURCE_DIR'] + '/tests/support')
 from meltdem_report import check_relative, report
+from lammps_run import printed_value, run_file
 
 T = "dem.restitution.monodisperse"
-BIN = os.path.join(os.environ['MELTDEM_BIN'], 'meltdem-lmp')
 IN = os.path.join(os.path.dirname(os.path.abspath(__file__)), 'in.head_on')
 
 
 def run(style, e, v, damp="tsuji"):
-    out = subprocess.run([BIN, '-log', 'none', '-in', IN, '-var', 'v', str(v), '-var', 'style', style,
-                          '-var', 'e', str(e), '-var', 'damp', damp, '-var', 'dt', '1e-10',
-                          '-var', 'n', '3000'], capture_output=True, text=True, cwd='/tmp')
-    for line in out.stdout.splitlines():
-        if line.startswith('RESULT'):
-            return float(line.split()[1])
-    sys.exit(f"no RESULT from meltdem-lmp:\n{out.stdout[-2000:]}\n{out.stderr[-2000:]}")
-
+    _, out = run_file(IN, dict(v=v, style=style, e=e, damp=damp, dt=1e-10, n=3000))
+    return printed_value(out, "RESULT")
 
 ok = True
 for v in (1, 10):

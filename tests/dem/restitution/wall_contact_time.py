@@ -6,15 +6,15 @@ wall, a 70 GPa wall (wall_material) and a rigid wall, at 2 and 20 m/s, plane and
 (t_c/dt ~ 600-1100) and, as the issue asks, at S = t_c/dt = 10 (<= 2 %). The contact
 starts and ends where the gap z - r crosses 0 (linear interpolation between steps: the
 sphere moves force-free on both sides). Stock wall/gran (E* too stiff by 1+nu) is printed."""
-import math, os, subprocess, sys
+import math, os, sys
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.environ['MELTDEM_SOURCE_DIR'] + '/tests/support')
 sys.path.insert(0, HERE)
 from meltdem_report import check_relative, report
+from lammps_run import run_file
 from hertz_ref import hertz_contact_time
 
 T = "dem.restitution.wall_contact_time"
-BIN = os.path.join(os.environ['MELTDEM_BIN'], 'meltdem-lmp')
 E, NU, RHO, D = 200e9, 0.3, 7800.0, 30e-6
 R = D / 2
 M = RHO * math.pi / 6 * D ** 3
@@ -26,11 +26,10 @@ def measured_contact_time(style, v, dt, extra="", geom="zplane 0.0 NULL"):
         wallfix = f"wall/gran granular hertz/material {E} 0 {NU} damping viscoelastic tangential linear_nohistory 1.0 0.0"
     z0 = R + 3 * v * dt
     n = int(2.5e-7 / dt) + 10 if v < 10 else int(1.5e-7 / dt) + 10
-    out = subprocess.run([BIN, '-log', 'none', '-in', os.path.join(HERE, 'in.wall_head_on'), '-var', 'v', str(v),
-                          '-var', 'z0', repr(z0), '-var', 'dt', repr(dt), '-var', 'n', str(n), '-var', 'every', '1',
-                          '-var', 'wallfix', wallfix, '-var', 'wallgeom', geom], capture_output=True, text=True, cwd='/tmp')
+    _, out = run_file(os.path.join(HERE, 'in.wall_head_on'),
+                      dict(v=v, z0=repr(z0), dt=repr(dt), n=n, every=1, wallfix=wallfix, wallgeom=geom))
     rows = []
-    for line in out.stdout.splitlines():
+    for line in out.splitlines():
         f = line.split()
         if len(f) == 5:
             try:
@@ -38,7 +37,7 @@ def measured_contact_time(style, v, dt, extra="", geom="zplane 0.0 NULL"):
             except ValueError:
                 pass
     if not rows:
-        sys.exit(f"no thermo output from meltdem-lmp:\n{out.stdout[-2000:]}\n{out.stderr[-2000:]}")
+        sys.exit(f"no thermo output from meltdem-lmp:\n{out[-2000:]}")
     t = [r[1] for r in rows]
     gap = [r[2] - R for r in rows]
     cross = [t[k] + gap[k] / (gap[k] - gap[k + 1]) * (t[k + 1] - t[k])

@@ -4,26 +4,23 @@
 e = |v_n after| / |v_n before| must be the prescribed e within 1 % for 'damping tsuji',
 and e(alpha) of the dimensionless Hertz-Tsuji contact (integrated here with scipy) for
 'damping tsuji/alpha' (alpha = 1: the thesis's wall value). Stock wall/gran is printed."""
-import os, subprocess, sys
+import os, sys
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.environ['MELTDEM_SOURCE_DIR'] + '/tests/support')
 sys.path.insert(0, HERE)
 from meltdem_report import check_relative, report
+from lammps_run import printed_value, run_file
 from hertz_ref import restitution_for_alpha
 
 T = "dem.restitution.wall"
-BIN = os.path.join(os.environ['MELTDEM_BIN'], 'meltdem-lmp')
 
 
 def run(style, e, v, damp="tsuji", extra="", geom="zplane 0.0 NULL", init2=0):
     wallfix = f"{style} granular hertz/material 200e9 {e} 0.3 damping {damp} {extra} tangential linear_nohistory 1.0 0.0"
-    out = subprocess.run([BIN, '-log', 'none', '-in', os.path.join(HERE, 'in.wall_head_on'), '-var', 'v', str(v),
-                          '-var', 'z0', '15.01e-6', '-var', 'dt', '1e-10', '-var', 'n', '3000', '-var', 'every', '3000',
-                          '-var', 'wallfix', wallfix, '-var', 'wallgeom', geom, '-var', 'init2', str(init2)], capture_output=True, text=True, cwd='/tmp')
-    for line in out.stdout.splitlines():
-        if line.startswith('RESULT'):
-            return float(line.split()[1])
-    sys.exit(f"no RESULT from meltdem-lmp:\n{out.stdout[-2000:]}\n{out.stderr[-2000:]}")
+    _, out = run_file(os.path.join(HERE, 'in.wall_head_on'),
+                      dict(v=v, z0='15.01e-6', dt='1e-10', n=3000, every=3000, wallfix=wallfix, wallgeom=geom,
+                           init2=init2))
+    return printed_value(out, "RESULT")
 
 
 ok = True
