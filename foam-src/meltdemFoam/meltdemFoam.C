@@ -33,7 +33,8 @@ Description
 
 #include "meltdemProperties.H"
 #include "surfaceForces.H"
-#include "meltdemSolverModels.H"
+#include "laserHeatSource.H"
+#include "evaporationModel.H"
 
 // * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * //
 
