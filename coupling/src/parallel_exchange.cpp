@@ -1,0 +1,241 @@
+#include "meltdem/coupling/parallel_exchange.h"
+
+#include "meltdem/coupling/exact_sum.h"
+
+#include <algorithm>
+#include <climits>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+namespace meltdem::coupling {
+
+namespace {
+
+// Gather `per` doubles per item from every rank, in rank order.
+void allgather_doubles(const std::vector<double> &local, int per, MPI_Comm comm, std::vector<double> &all,
+                       std::vector<int> &counts, std::vector<int> &displs)
+{
+  int size = 1;
+  MPI_Comm_size(comm, &size);
+  const int n = int(local.size()) / per;
+  counts.assign(size, 0);
+  MPI_Allgather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, comm);
+  displs.assign(size, 0);
+  for (int r = 1; r < size; ++r) displs[r] = displs[r - 1] + counts[r - 1];
+  const int total = displs[size - 1] + counts[size - 1];
+  std::vector<int> c(size), d(size);
+  for (int r = 0; r < size; ++r) c[r] = counts[r] * per, d[r] = displs[r] * per;
+  all.assign(std::size_t(total) * per, 0.0);
+  MPI_Allgatherv(local.data(), n * per, MPI_DOUBLE, all.data(), c.data(), d.data(), MPI_DOUBLE, comm);
+}
+
+// Does box [lo, hi] share a face with box [hlo, hhi]? Then axis/plane of that face.
+bool shares_face(const Eigen::Vector3d &lo, const Eigen::Vector3d &hi, const Eigen::Vector3d &hlo,
+                 const Eigen::Vector3d &hhi, int &axis, double &plane, double &outward)
+{
+  const double tol = 1e-9 * (hhi - hlo).maxCoeff();
+  int touching = -1, overlapping = 0;
+  for (int a = 0; a < 3; ++a) {
+    const double ov = std::min(hi[a], hhi[a]) - std::max(lo[a], hlo[a]);
+    if (ov > tol) {
+      ++overlapping;
+    } else if (std::abs(ov) <= tol) {
+      if (touching >= 0) return false;  // an edge or a corner, not a face
+      touching = a;
+    } else {
+      return false;
+    }
+  }
+  if (overlapping != 2 || touching < 0) return false;
+  axis = touching;
+  if (std::abs(lo[axis] - hhi[axis]) <= tol) {
+    plane = hhi[axis];
+    outward = 1.0;
+  } else {
+    plane = hlo[axis];
+    outward = -1.0;
+  }
+  return true;
+}
+
+}  // namespace
+
+ParallelExchange::ParallelExchange(const DistributionMesh &local_mesh, DistributionModel model, MPI_Comm comm)
+  : mesh_(local_mesh), model_(model), comm_(comm)
+{
+  MPI_Comm_rank(comm_, &rank_);
+  MPI_Comm_size(comm_, &size_);
+}
+
+void ParallelExchange::locate(const std::vector<ParticleShape> &local)
+{
+  std::vector<double> mine;
+  mine.reserve(4 * local.size());
+  for (const ParticleShape &p : local) {
+    if (!(p.radius > 0.0) || !std::isfinite(p.radius) || !p.x.allFinite())
+      throw std::invalid_argument("particle exchange: radius " + std::to_string(p.radius) +
+                                  " or position not finite/positive");
+    mine.insert(mine.end(), {p.x.x(), p.x.y(), p.x.z(), p.radius});
+  }
+  std::vector<double> all;
+  allgather_doubles(mine, 4, comm_, all, counts_, displs_);
+  const std::size_t n = all.size() / 4;
+  offset_ = std::size_t(displs_[rank_]);
+  all_.resize(n);
+  for (std::size_t g = 0; g < n; ++g) all_[g] = {Eigen::Vector3d(all[4 * g], all[4 * g + 1], all[4 * g + 2]), all[4 * g + 3]};
+
+  // the cell holding each centre: the lowest rank that finds it owns it
+  std::vector<long> home(n, -1);
+  std::vector<int> owner(n, INT_MAX);
+  for (std::size_t g = 0; g < n; ++g) {
+    home[g] = mesh_.find_cell(all_[g].x);
+    if (home[g] >= 0) owner[g] = rank_;
+  }
+  if (n) MPI_Allreduce(MPI_IN_PLACE, owner.data(), int(n), MPI_INT, MPI_MIN, comm_);
+  for (std::size_t g = 0; g < n; ++g)
+    if (owner[g] != rank_) home[g] = -1;
+
+  // the owner's home-cell box, for the neighbours model (others see +inf/-inf)
+  std::vector<double> hbox;
+  if (model_ == DistributionModel::Neighbours && n) {
+    const double inf = std::numeric_limits<double>::infinity();
+    hbox.assign(6 * n, 0.0);
+    for (std::size_t g = 0; g < n; ++g) {
+      Eigen::Vector3d lo(inf, inf, inf), hi(-inf, -inf, -inf);
+      if (home[g] >= 0) mesh_.cell_bounds(home[g], lo, hi);
+      for (int a = 0; a < 3; ++a) hbox[6 * g + a] = -lo[a], hbox[6 * g + 3 + a] = hi[a];
+    }
+    MPI_Allreduce(MPI_IN_PLACE, hbox.data(), int(6 * n), MPI_DOUBLE, MPI_MAX, comm_);
+  }
+
+  // raw weights over this rank's cells
+  start_.assign(n + 1, 0);
+  cells_.clear();
+  weights_.clear();
+  std::vector<long> candidates;
+  for (std::size_t g = 0; g < n; ++g) {
+    start_[g] = cells_.size();
+    if (owner[g] == INT_MAX) continue;  // outside the mesh
+    const Eigen::Vector3d &c = all_[g].x;
+    const double r = all_[g].radius;
+    switch (model_) {
+      case DistributionModel::Centre:
+        if (home[g] >= 0) cells_.push_back(home[g]), weights_.push_back(1.0);
+        break;
+      case DistributionModel::Neighbours: {
+        const Eigen::Vector3d hlo(-hbox[6 * g], -hbox[6 * g + 1], -hbox[6 * g + 2]);
+        const Eigen::Vector3d hhi(hbox[6 * g + 3], hbox[6 * g + 4], hbox[6 * g + 5]);
+        if (home[g] >= 0) cells_.push_back(home[g]), weights_.push_back(mesh_.cell_volume(home[g]));
+        candidates.clear();
+        mesh_.cells_in_sphere(c, r, candidates);
+        Eigen::Vector3d lo, hi;
+        for (long cell : candidates) {
+          if (cell == home[g]) continue;
+          mesh_.cell_bounds(cell, lo, hi);
+          int axis;
+          double plane, outward;
+          // thesis fig. 3.9: reached when c + r n lies beyond the shared face
+          if (shares_face(lo, hi, hlo, hhi, axis, plane, outward) && (c[axis] - plane) * outward + r > 0.0)
+            cells_.push_back(cell), weights_.push_back(mesh_.cell_volume(cell));
+        }
+        break;
+      }
+      case DistributionModel::Overlap: {
+        candidates.clear();
+        mesh_.cells_in_sphere(c, r, candidates);
+        Eigen::Vector3d lo, hi;
+        for (long cell : candidates) {
+          mesh_.cell_bounds(cell, lo, hi);
+          const double v = sphere_box_overlap(c, r, lo, hi);
+          if (v > 0.0) cells_.push_back(cell), weights_.push_back(v);
+        }
+        break;
+      }
+    }
+  }
+  start_[n] = cells_.size();
+
+  // global normalisation: compensated local sums, then summed over the ranks
+  std::vector<double> sums(2 * n, 0.0);
+  for (std::size_t g = 0; g < n; ++g) {
+    ExactSum s;
+    for (std::size_t k = start_[g]; k < start_[g + 1]; ++k) s.add(weights_[k]);
+    sums[g] = s.hi(), sums[n + g] = s.lo();
+  }
+  if (n) MPI_Allreduce(MPI_IN_PLACE, sums.data(), int(2 * n), MPI_DOUBLE, MPI_SUM, comm_);
+  inside_.assign(n, 0);
+  for (std::size_t g = 0; g < n; ++g) {
+    const double total = sums[g] + sums[n + g];
+    if (!(total > 0.0)) {
+      for (std::size_t k = start_[g]; k < start_[g + 1]; ++k) weights_[k] = 0.0;
+      continue;
+    }
+    inside_[g] = 1;
+    for (std::size_t k = start_[g]; k < start_[g + 1]; ++k) weights_[k] /= total;
+  }
+}
+
+void ParallelExchange::sample(const CellFluidFields &f, std::vector<SampledFluid> &local_out) const
+{
+  if (!f.T || !f.k || !f.rho || !f.mu || !f.cp || !f.U)
+    throw std::invalid_argument("particle exchange: T, k, rho, mu, cp and U are required to sample the fluid");
+  constexpr int kFields = 10;
+  const std::size_t n = all_.size();
+  std::vector<double> partial(kFields * n, 0.0);
+  for (std::size_t g = 0; g < n; ++g) {
+    double *q = &partial[kFields * g];
+    for (std::size_t k = start_[g]; k < start_[g + 1]; ++k) {
+      const long c = cells_[k];
+      const double w = weights_[k];
+      q[0] += w * f.T[c];
+      q[1] += w * f.k[c];
+      q[2] += w * f.rho[c];
+      q[3] += w * f.mu[c];
+      q[4] += w * f.cp[c];
+      for (int d = 0; d < 3; ++d) q[5 + d] += w * f.U[3 * c + d];
+      if (f.alpha_metal) q[8] += w * f.alpha_metal[c];
+      if (f.liquid_fraction) q[9] += w * f.liquid_fraction[c];
+    }
+  }
+  if (n) MPI_Allreduce(MPI_IN_PLACE, partial.data(), int(kFields * n), MPI_DOUBLE, MPI_SUM, comm_);
+  const std::size_t mine = std::size_t(counts_[rank_]);
+  local_out.assign(mine, SampledFluid());
+  for (std::size_t i = 0; i < mine; ++i) {
+    if (!inside_[offset_ + i]) continue;
+    const double *q = &partial[kFields * (offset_ + i)];
+    SampledFluid &s = local_out[i];
+    s.fluid.T = q[0], s.fluid.k = q[1], s.fluid.rho = q[2], s.fluid.mu = q[3], s.fluid.cp = q[4];
+    for (int d = 0; d < 3; ++d) s.fluid.U[d] = q[5 + d];
+    s.alpha_metal = q[8], s.liquid_fraction = q[9];
+  }
+}
+
+void ParallelExchange::deposit(const std::vector<Amounts> &local_amounts, std::vector<Amounts> &cell_amounts) const
+{
+  if (local_amounts.size() != std::size_t(counts_[rank_]))
+    throw std::invalid_argument("particle exchange: deposit() needs one amount per located local particle");
+  std::vector<double> mine;
+  mine.reserve(kComponents * local_amounts.size());
+  for (const Amounts &a : local_amounts) mine.insert(mine.end(), a.begin(), a.end());
+  std::vector<double> all;
+  std::vector<int> counts, displs;
+  allgather_doubles(mine, kComponents, comm_, all, counts, displs);
+  for (std::size_t g = 0; g < all_.size(); ++g) {
+    if (!inside_[g]) continue;
+    const double *a = &all[kComponents * g];
+    for (std::size_t k = start_[g]; k < start_[g + 1]; ++k) {
+      Amounts &c = cell_amounts.at(std::size_t(cells_[k]));
+      for (int q = 0; q < kComponents; ++q) c[q] += weights_[k] * a[q];
+    }
+  }
+}
+
+void ParallelExchange::local_weights(std::int64_t g, std::vector<CellWeight> &out) const
+{
+  out.clear();
+  for (std::size_t k = start_[std::size_t(g)]; k < start_[std::size_t(g) + 1]; ++k) out.push_back({cells_[k], weights_[k]});
+}
+
+}  // namespace meltdem::coupling

@@ -1,0 +1,101 @@
+// parallel_exchange.h on one rank: the weights equal distribute_particle's, deposits sum
+// to what was handed over, sampling equals sample_fluid.
+#include "meltdem/coupling/parallel_exchange.h"
+#include "parallel_exchange_case.h"
+#include "validation_report.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+
+using namespace meltdem::coupling;
+using namespace meltdem::coupling::testing;
+
+class ParallelExchangeSerial : public ::testing::TestWithParam<DistributionModel> {};
+
+TEST_P(ParallelExchangeSerial, WeightsEqualTheSerialDistribution)
+{
+  ExchangeCase k;
+  const CartesianGridMesh mesh(k.x, k.y, k.z);
+  ParallelExchange ex(mesh, GetParam(), MPI_COMM_SELF);
+  ex.locate(k.particles);
+  double worst = 0.0;
+  int inside = 0;
+  std::vector<CellWeight> ref, got;
+  for (std::size_t i = 0; i < k.particles.size(); ++i) {
+    const bool in = distribute_particle(mesh, GetParam(), k.particles[i].x, k.particles[i].radius, ref);
+    ASSERT_EQ(in, ex.inside(i)) << "particle " << i;
+    inside += in;
+    ex.local_weights(std::int64_t(i), got);
+    std::map<long, double> a, b;
+    for (auto &w : ref) a[w.cell] += w.weight;
+    for (auto &w : got) b[w.cell] += w.weight;
+    ASSERT_EQ(a.size(), b.size()) << "particle " << i;
+    for (auto &[cell, w] : a) worst = std::max(worst, std::abs(w - b.at(cell)));
+  }
+  EXPECT_GT(inside, 40);
+  meltdem::testing::expect_absolute(std::string("parallel_exchange ") + to_string(GetParam()) +
+                                        ": largest weight difference vs distribute_particle",
+                                    worst, 0.0, 1e-14);
+}
+
+TEST_P(ParallelExchangeSerial, DepositSumsToWhatWasHandedOver)
+{
+  ExchangeCase k;
+  const CartesianGridMesh mesh(k.x, k.y, k.z);
+  ParallelExchange ex(mesh, GetParam(), MPI_COMM_SELF);
+  ex.locate(k.particles);
+  std::vector<Amounts> cells(std::size_t(mesh.n_cells()), Amounts{});
+  ex.deposit(k.amounts, cells);
+  for (int q = 0; q < kComponents; ++q) {
+    double handed = 0.0, got = 0.0, scale = 0.0;
+    for (std::size_t i = 0; i < k.amounts.size(); ++i) {
+      if (ex.inside(i)) handed += k.amounts[i][q];
+      scale = std::max(scale, std::abs(k.amounts[i][q]));
+    }
+    for (auto &c : cells) got += c[q];
+    EXPECT_LE(std::abs(got - handed), 1e-14 * scale * k.amounts.size()) << "component " << q;
+  }
+}
+
+TEST_P(ParallelExchangeSerial, SamplingEqualsSampleFluid)
+{
+  ExchangeCase k;
+  const CartesianGridMesh mesh(k.x, k.y, k.z);
+  std::vector<double> T, one, U;
+  for (long c = 0; c < mesh.n_cells(); ++c) {
+    T.push_back(ExchangeCase::field(mesh.cell_centre(c)));
+    one.push_back(1.0);
+    U.insert(U.end(), {1.0, 2.0, 3.0});
+  }
+  const CellFluidFields f{T.data(), one.data(), one.data(), one.data(), one.data(), U.data(), one.data(), nullptr};
+  ParallelExchange ex(mesh, GetParam(), MPI_COMM_SELF);
+  ex.locate(k.particles);
+  std::vector<SampledFluid> got;
+  ex.sample(f, got);
+  std::vector<CellWeight> w;
+  for (std::size_t i = 0; i < k.particles.size(); ++i) {
+    if (!distribute_particle(mesh, GetParam(), k.particles[i].x, k.particles[i].radius, w)) continue;
+    const SampledFluid ref = sample_fluid(w, f);
+    EXPECT_NEAR(got[i].fluid.T, ref.fluid.T, 1e-12 * ref.fluid.T);
+    EXPECT_NEAR(got[i].alpha_metal, 1.0, 1e-14);
+    EXPECT_NEAR(got[i].fluid.U[2], 3.0, 1e-14);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Models, ParallelExchangeSerial,
+                         ::testing::Values(DistributionModel::Centre, DistributionModel::Neighbours,
+                                           DistributionModel::Overlap),
+                         [](const auto &info) { return std::string(to_string(info.param)); });
+
+TEST(ParallelExchange, BadInputThrows)
+{
+  const auto mesh = CartesianGridMesh::uniform(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 1, 1), 2, 2, 2);
+  ParallelExchange ex(mesh, DistributionModel::Overlap, MPI_COMM_SELF);
+  EXPECT_THROW(ex.locate({ParticleShape{Eigen::Vector3d(0.5, 0.5, 0.5), -1.0}}), std::invalid_argument);
+  EXPECT_THROW(ex.locate({ParticleShape{Eigen::Vector3d(NAN, 0.5, 0.5), 0.1}}), std::invalid_argument);
+  ex.locate({ParticleShape{Eigen::Vector3d(0.5, 0.5, 0.5), 0.1}});
+  std::vector<Amounts> cells(8, Amounts{});
+  EXPECT_THROW(ex.deposit({}, cells), std::invalid_argument);
+}
