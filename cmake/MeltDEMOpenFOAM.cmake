@@ -13,9 +13,10 @@ set(MELTDEM_FOAM_LIBDIR "/usr/lib" CACHE PATH "Folder holding Debian's OpenFOAM 
 set(MELTDEM_FOAM_PROJECT_DIR "/usr/share/openfoam" CACHE PATH "WM_PROJECT_DIR at run time")
 
 set(MELTDEM_FOAM_DEFINES OPENFOAM=1912 WM_DP WM_LABEL_SIZE=32 NoRepository)
-set(MELTDEM_FOAM_OPTIONS -std=c++11 -m64 -pthread -ftemplate-depth-100 -O3
+set(MELTDEM_FOAM_OPTIONS -std=c++17 -m64 -pthread -ftemplate-depth-100 -O3
     -Wall -Wextra -Wold-style-cast -Wnon-virtual-dtor -Wno-unused-parameter
-    -Wno-invalid-offsetof -Wno-attributes -Wno-unknown-pragmas)
+    -Wno-invalid-offsetof -Wno-attributes -Wno-unknown-pragmas
+    -Wno-deprecated-declarations)  # C++17: OpenFOAM v1912 still derives from std::iterator
 
 # One imported target per Debian OpenFOAM library; they carry no SONAME.
 function(meltdem_foam_import_lib name)
