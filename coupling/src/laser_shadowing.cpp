@@ -8,6 +8,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace meltdem::coupling {
 
@@ -233,6 +234,63 @@ ShadowResult shade_particles(const GaussianBeam &beam, const std::vector<BeamPar
   res.power = P;
   res.absorptivity = eta;
   return res;
+}
+
+ShadowResult shade_particles(MPI_Comm comm, const GaussianBeam &beam, const std::vector<BeamParticle> &local,
+                             const ShadowOptions &options)
+{
+  check_beam(beam);  // the same beam everywhere: every rank throws alike
+  // check the local particles first, and agree on the outcome, so that no rank is left
+  // waiting in the gather below
+  std::string local_error;
+  for (std::size_t k = 0; k < local.size() && local_error.empty(); ++k) {
+    if (!(local[k].radius > 0.0) || !std::isfinite(local[k].radius))
+      local_error = "local particle " + std::to_string(k) + " radius = " + str(local[k].radius) +
+                    " m must be finite and > 0";
+    else if (!local[k].x.allFinite())
+      local_error = "local particle " + std::to_string(k) + " centre " + str(local[k].x) + " is not finite";
+  }
+  int rank = 0, size = 1, mine = local_error.empty() ? 0 : 1, any = 0;
+  MPI_Comm_rank(comm, &rank);
+  MPI_Comm_size(comm, &size);
+  MPI_Allreduce(&mine, &any, 1, MPI_INT, MPI_MAX, comm);
+  if (any) bad(mine ? local_error + " (rank " + std::to_string(rank) + ")" : "bad particle input on another rank");
+
+  // the particles whose disk reaches the sampled square
+  Eigen::Vector3d u, v;
+  const Eigen::Vector3d d = beam.direction.normalized();
+  beam_plane_basis(d, u, v);
+  const double half = options.extent * beam.radius;
+  std::vector<int> selected;
+  std::vector<double> packed;
+  for (std::size_t k = 0; k < local.size(); ++k) {
+    const Eigen::Vector3d q = local[k].x - beam.centre;
+    if (std::abs(q.dot(u)) < half + local[k].radius && std::abs(q.dot(v)) < half + local[k].radius) {
+      selected.push_back(static_cast<int>(k));
+      packed.insert(packed.end(), {local[k].x.x(), local[k].x.y(), local[k].x.z(), local[k].radius});
+    }
+  }
+  int count = static_cast<int>(packed.size());
+  std::vector<int> counts(size), offsets(size, 0);
+  MPI_Allgather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, comm);
+  for (int r = 1; r < size; ++r) offsets[r] = offsets[r - 1] + counts[r - 1];
+  std::vector<double> all(offsets[size - 1] + counts[size - 1]);
+  MPI_Allgatherv(packed.data(), count, MPI_DOUBLE, all.data(), counts.data(), offsets.data(), MPI_DOUBLE, comm);
+  std::vector<BeamParticle> gathered(all.size() / 4);
+  for (std::size_t k = 0; k < gathered.size(); ++k)
+    gathered[k] = {Eigen::Vector3d(all[4 * k], all[4 * k + 1], all[4 * k + 2]), all[4 * k + 3]};
+
+  ShadowResult global = shade_particles(beam, gathered, options);
+  // back to the caller's particles
+  std::vector<double> absorbed(local.size(), 0.0), intercepted(local.size(), 0.0);
+  const std::size_t first = offsets[rank] / 4;
+  for (std::size_t j = 0; j < selected.size(); ++j) {
+    absorbed[selected[j]] = global.absorbed[first + j];
+    intercepted[selected[j]] = global.intercepted[first + j];
+  }
+  global.absorbed = std::move(absorbed);
+  global.intercepted = std::move(intercepted);
+  return global;
 }
 
 double transmitted_fraction(const ShadowResult &result, const Eigen::Vector3d &point, double footprint)

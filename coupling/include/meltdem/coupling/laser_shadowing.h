@@ -37,6 +37,7 @@
 // Pass only particles the beam can reach as particles (in the gas): a particle captured
 // by the melt is continuum and must not absorb twice.
 #include <Eigen/Core>
+#include <mpi.h>
 
 #include <cstdint>
 #include <vector>
@@ -113,6 +114,14 @@ double beam_power_in_disk(const GaussianBeam &beam, double R, double s = 0.0);
 // bad value) for P < 0, eta outside [0,1], w <= 0, a zero or non-finite direction or
 // centre, a particle with radius <= 0 or a non-finite centre, or bad options.
 ShadowResult shade_particles(const GaussianBeam &beam, const std::vector<BeamParticle> &particles,
+                             const ShadowOptions &options = {});
+
+// The same over MPI (collective on comm; the beam and options must be the same on every
+// rank): each rank passes its own particles; those whose disk reaches the sampled square
+// are gathered onto every rank (in rank order) and cast there, so all ranks hold the same
+// grid and totals. absorbed / intercepted are returned for the caller's particles (0 for
+// those outside the square). Bad particle input on any rank throws on every rank.
+ShadowResult shade_particles(MPI_Comm comm, const GaussianBeam &beam, const std::vector<BeamParticle> &local,
                              const ShadowOptions &options = {});
 
 // Geometric fraction of the beam arriving at `point` (0 or 1): the ray through the point's
