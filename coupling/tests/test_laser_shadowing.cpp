@@ -203,6 +203,9 @@ TEST(LaserShadowing, ManyParticlesBalanceCloses)
   const double continuum = ray_power + r.tail_power;  // what reaches the continuum, ray by ray
   std::cout << "300 particles: intercepted " << r.intercepted_total << " W of " << P << " W, " << rays.size()
             << " transmitted rays, tail " << r.tail_power << " W\n";
+  std::cout << std::setprecision(17) << "balance: (sum(absorbed) + eta (rays + tail)) / (eta P) - 1 = "
+            << (sum(r.absorbed) + eta * continuum) / (eta * P) - 1.0 << ", with continuum_absorbed(): "
+            << (sum(r.absorbed) + r.continuum_absorbed()) / (eta * P) - 1.0 << std::setprecision(6) << "\n";
   expect_relative("sum(absorbed) + eta (transmitted rays + tail) [W]", sum(r.absorbed) + eta * continuum, eta * P,
                   1e-12);
   expect_relative("sum(absorbed) + continuum_absorbed() [W]", sum(r.absorbed) + r.continuum_absorbed(), eta * P,
@@ -342,9 +345,9 @@ TEST(LaserShadowing, CostPerParticle)
     double total = 0.0;
     for (int k = 0; k < reps; ++k) total += shade_particles(b, ps, opt).intercepted_total;
     const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() / reps;
-    const int n = shade_particles(b, ps, opt).grid.n;
-    std::cout << "COST 1000 particles (R = 0.15..0.4 w), R_min/h = " << cpr << " (" << n << "^2 rays): "
-              << s * 1e3 << " ms per call, " << s / 1000 * 1e6 << " us per particle (intercepted "
+    const ShadowGrid grid = shade_particles(b, ps, opt).grid;
+    std::cout << "COST 1000 particles (R = 0.15..0.4 w), cells_per_particle_radius " << cpr << ": 0.15 w / h = "
+              << 0.15 * w / grid.h << " (" << grid.n << "^2 rays): " << s * 1e3<< " ms per call, " << s / 1000 * 1e6 << " us per particle (intercepted "
               << total / reps << " W)\n";
   }
 }

@@ -10,24 +10,31 @@
 // domain). It has no focus or divergence and comes from infinitely far upstream: every
 // particle is lit whatever its depth. Depth of a point x: (x - centre) . direction.
 // A disk of radius R centred on the axis receives P (1 - exp(-2 R^2/w^2)).
+// Cost: 12 bytes and one init per ray of the n^2 grid, plus ~3 ns per ray inside each
+// particle's disk: 1000 particles R = 0.15..0.4 w at R_min/h = 20: ~14 ms per call.
 //
 // Scheme (ray casting, exact balance by construction): the beam's cross-section (the plane
 // normal to the axis through `centre`) is cut into a Cartesian grid of square cells of
-// side h = w / cells_per_radius over the square |u|, |v| <= extent w. Each cell is one ray
+// side h over the square |u|, |v| <= extent w (ShadowOptions: h = min(w/cells_per_radius,
+// R_min/cells_per_particle_radius), n even, the grid symmetric about the axis; u, v from
+// beam_plane_basis). Each cell is one ray
 // along the axis through the cell centre, carrying the exact beam power over the cell
 // (the profile is separable: P g_i g_j, g_i = (erf(sqrt2 u_{i+1}/w) - erf(sqrt2 u_i/w))/2).
 // A ray is intercepted by the sphere it enters first (smallest entry depth d_k -
 // sqrt(R_k^2 - rho^2), a z-buffer: exact for overlapping spheres too, no sorting). A
 // particle's intercepted power is the sum of its rays; it absorbs eta times that (the
 // rest, (1 - eta), is reflected and leaves the domain, as the continuum's (1 - eta)
-// does). Rays no particle hits, and the beam tail outside the sampled square
+// does: no multiple reflections). Rays no particle hits, and the beam tail outside the sampled square
 // (P (1 - erf(sqrt2 extent)^2), 2e-15 P at extent 4), reach the continuum:
 //     transmitted_power = P - intercepted_total,
 //     sum(absorbed) + eta transmitted_power = eta P   (to round-off).
-// Discretisation error (measured, doc/coupling_laser_shadowing.rst): a particle's share is
-// its disk area counted in whole cells, so it scales with the number of cells across its
-// radius, R/h; for a particle on the axis the mean relative error over R = 0.2..1 w is
-// about 1e-3 at R/h ~ 25 and falls like (R/h)^-1.5 (Gauss's circle problem).
+// Discretisation error (measured, tests/test_laser_shadowing.cpp, doc/coupling_laser_shadowing.rst):
+// a particle's share is its disk counted in whole rays, so the error depends on R/h, the
+// rays across its radius. A particle centred on the axis (the grid's symmetric worst
+// case), R = 0.25..1 w: mean / max relative error 1.5 % / 2.3 % at R/h = 5, 0.37 % / 0.55 %
+// at R/h = 20 (the default), 0.04 % / 0.05 % at 40, 0.013 % / 0.06 % at 80 (order ~1.7).
+// The balance is exact whatever the resolution: only the split between particles and
+// continuum carries that error.
 //
 // The continuum (laserHeatSource) uses the result in two ways:
 //   * it deposits eta * transmitted_power instead of eta P (normalisation target), and
@@ -66,7 +73,7 @@ struct ShadowOptions {
   double extent = 4.0;                     // half-width of the sampled square in beam radii (> 0)
   // at most max_cells rays: cells_per_radius beyond it throws; the particle criterion is
   // capped there (the grid then has max_cells rays, grid.h says which spacing was used)
-  std::int64_t max_cells = 16'000'000;
+  std::int64_t max_cells = 4'000'000;  // 12 bytes per ray
 };
 
 // The ray grid after casting: enough to answer "is this point lit?" and to list the rays
