@@ -189,6 +189,8 @@ ShadowResult shade_particles(const GaussianBeam &beam, const std::vector<BeamPar
     const Eigen::Vector3d p = particles[k].x - g.centre;
     const double depth = p.dot(g.direction), pu = p.dot(g.u), pv = p.dot(g.v);
     const double R = particles[k].radius, R2 = R * R;
+    // a disk outside the square has no rays (and far-away centres would overflow the indices)
+    if (!(std::abs(pu) < g.half_width + R && std::abs(pv) < g.half_width + R)) continue;
     // cell centres u_i = (i + 0.5 - m) h
     const int j0 = std::max(0, static_cast<int>(std::ceil((pv - R) * inv_h + m - 0.5)));
     const int j1 = std::min(n - 1, static_cast<int>(std::floor((pv + R) * inv_h + m - 0.5)));

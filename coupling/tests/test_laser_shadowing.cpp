@@ -266,6 +266,36 @@ TEST(LaserShadowing, ParticleOutsideBeam)
                   0.5 * b.power * std::erfc(std::sqrt(2.0) * 2.5));
 }
 
+// particles at the square's edge, covering all of it, or very far away
+TEST(LaserShadowing, EdgeAndHugeParticles)
+{
+  const GaussianBeam b = test_beam();
+  const double w = b.radius;
+  // a particle far away (1 km): no rays, no overflow
+  const ShadowResult far = shade_particles(b, {{beam_point(b, 0.0, 1e3, -1e3), 10e-6}});
+  expect_absolute("particle 1 km away [W]", far.absorbed[0], 0.0, 0.0);
+  // a particle whose disk covers the whole sampled square: it intercepts every ray, the
+  // continuum gets only the tail outside the square
+  const ShadowResult huge = shade_particles(b, {{beam_point(b, 20 * w, 0.0), 10 * w}});
+  expect_relative("huge particle intercepts the sampled power [W]", huge.intercepted[0], huge.sampled_power, 1e-13);
+  expect_absolute("what reaches the continuum is the tail (round-off of 1.6e5 rays) [W]", huge.transmitted_power,
+                  huge.tail_power, 1e-12 * b.power);
+  EXPECT_TRUE(transmitted_rays(huge).empty());
+  // a particle straddling the square's edge (centre at u = 4 w) gets only its rays inside
+  // the square: its inner half, the brighter one (between half and all of its share)
+  ShadowOptions opt;
+  opt.extent = 1.0;  // a small square, so the straddling share is not negligible
+  const double R = 0.25 * w;
+  const ShadowResult edge = shade_particles(b, {{beam_point(b, R, 1.0 * w, 0.0), R}}, opt);
+  const double full = beam_power_in_disk(b, R, 1.0 * w);
+  std::cout << "particle straddling the square edge (extent 1): " << edge.intercepted[0] << " W of its " << full
+            << " W, tail " << edge.tail_power << " W\n";
+  EXPECT_GT(edge.intercepted[0], 0.5 * full);
+  EXPECT_LT(edge.intercepted[0], full);
+  expect_relative("balance with a straddling particle [W]", edge.absorbed[0] + edge.continuum_absorbed(),
+                  b.absorptivity * b.power, 1e-15);
+}
+
 // (6) bad input
 TEST(LaserShadowing, BadInputThrows)
 {
