@@ -67,7 +67,7 @@ struct BeamParticle {
 struct ShadowOptions {
   // ray spacing h = min(w / cells_per_radius, R_min / cells_per_particle_radius), R_min the
   // smallest particle in the sampled square: a particle's share is its disk counted in
-  // whole cells, so its error depends on R/h (0.1-0.5 % at R/h = 20, see above)
+  // whole cells, so its error depends on R/h (~0.5 % at R/h = 20, see above)
   double cells_per_radius = 50.0;          // rays per beam radius w (> 0)
   double cells_per_particle_radius = 20.0;  // rays per particle radius (>= 0, 0: off)
   double extent = 4.0;                     // half-width of the sampled square in beam radii (> 0)
