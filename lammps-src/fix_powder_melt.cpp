@@ -20,6 +20,7 @@
 
 #include "meltdem/coupling/particle_forces.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <stdexcept>
@@ -32,7 +33,7 @@ namespace mc = meltdem::coupling;
 
 FixPowderMelt::FixPowderMelt(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), drag_model(mc::DragModel::Thesis), T0(0.0), ambient_flag(0),
-    provider(nullptr), melt(nullptr), exchange(nullptr), nmax_exchange(0), vector_dirty(1),
+    provider(nullptr), in_setup(0), melt(nullptr), exchange(nullptr), nmax_exchange(0), vector_dirty(1),
     warned_drag(0)
 {
   if (strcmp(update->unit_style, "si") != 0)
@@ -222,7 +223,11 @@ void FixPowderMelt::setup(int vflag)
     if (melt[i][MASS0] <= 0.0) melt[i][MASS0] = atom->rmass[i];
     refresh_output(i);
   }
+  // the forces at the start of a run: not an impulse of the interval yet (the steps'
+  // own post_force books each step's drag impulse once)
+  in_setup = 1;
   post_force(vflag);
+  in_setup = 0;
 }
 
 /* ---------------------------------------------------------------------- */
@@ -247,10 +252,23 @@ void FixPowderMelt::pre_exchange()
 
 int FixPowderMelt::delete_molten()
 {
+  return (int) delete_local([this](int i) {
+    if (melt[i][MOLTEN] == 0.0) return false;
+    finished.push_back(record(i));  // the coupling still has to hand its last melt over
+    return true;
+  });
+}
+
+/* ----------------------------------------------------------------------
+   delete the local atoms for which doomed(i) holds; collective
+------------------------------------------------------------------------- */
+
+bigint FixPowderMelt::delete_local(const std::function<bool(int)> &doomed)
+{
   AtomVec *avec = atom->avec;
   bigint ndel = 0;
   for (int i = atom->nlocal - 1; i >= 0; i--)
-    if (melt[i][MOLTEN] != 0.0) {
+    if (doomed(i)) {
       avec->copy(atom->nlocal - 1, i, 1);
       atom->nlocal--;
       ndel++;
@@ -265,7 +283,7 @@ int FixPowderMelt::delete_molten()
       atom->map_set();
     }
   }
-  return (int) ndel_all;
+  return ndel_all;
 }
 
 /* ----------------------------------------------------------------------
@@ -306,6 +324,7 @@ void FixPowderMelt::post_force(int /*vflag*/)
     for (int k = 0; k < 3; k++) {
       f[i][k] += F.drag[k] + F.buoyancy[k];
       exchange[i].drag[k] = F.drag[k];
+      if (!in_setup) melt[i][I_DX + k] += F.drag[k] * dt;
     }
     // explicit drag overshoots once dt exceeds the particle response time m / beta
     if (!warned_drag && F.beta * dt > rmass[i]) {
@@ -369,6 +388,10 @@ void FixPowderMelt::end_of_step()
     }
     ledger[5].add(r.heat);
     melt[i][HSPEC] = r.h;
+    melt[i][I_MASS] += r.mass_melted;
+    melt[i][I_ENTH] += r.enthalpy_out;
+    for (int k = 0; k < 3; k++) melt[i][I_PX + k] += ex.momentum[k];
+    melt[i][I_HEAT] += r.heat;
 
     if (r.fully_molten) {
       // keep mass and radius until the atom is deleted at the next pre_exchange (the
@@ -484,6 +507,7 @@ void FixPowderMelt::set_arrays(int i)
   melt[i][HSPEC] = mat.cp * T0;
   melt[i][MASS0] = 0.0;
   melt[i][MOLTEN] = 0.0;
+  for (int k = I_MASS; k < NCOL; k++) melt[i][k] = 0.0;
 }
 
 int FixPowderMelt::pack_exchange(int i, double *buf)
@@ -528,4 +552,46 @@ int FixPowderMelt::maxsize_restart()
 double FixPowderMelt::memory_usage()
 {
   return (double) atom->nmax * NCOL * sizeof(double) + (double) nmax_exchange * sizeof(StepExchange);
+}
+
+/* ----------------------------------------------------------------------
+   coupling interface: the interval's exchange per particle
+------------------------------------------------------------------------- */
+
+mc::ExchangeRecord FixPowderMelt::record(int i) const
+{
+  mc::ExchangeRecord r;
+  const bool molten = melt[i][MOLTEN] != 0.0;
+  r.id = atom->tag[i];
+  r.x = Eigen::Vector3d(atom->x[i][0], atom->x[i][1], atom->x[i][2]);
+  r.radius = atom->radius[i];  // the last solid radius, also once fully molten
+  r.v = Eigen::Vector3d(atom->v[i][0], atom->v[i][1], atom->v[i][2]);
+  r.h = melt[i][HSPEC];
+  r.T = mc::particle_temperature(mat, r.h);
+  r.mass = molten ? 0.0 : atom->rmass[i];
+  r.mass_out = melt[i][I_MASS];
+  r.enthalpy_out = melt[i][I_ENTH];
+  r.momentum_out = Eigen::Vector3d(melt[i][I_PX], melt[i][I_PY], melt[i][I_PZ]);
+  r.heat_absorbed = melt[i][I_HEAT];
+  r.impulse_from_fluid = Eigen::Vector3d(melt[i][I_DX], melt[i][I_DY], melt[i][I_DZ]);
+  return r;
+}
+
+void FixPowderMelt::interval_records(std::vector<mc::ExchangeRecord> &out) const
+{
+  out = finished;
+  for (int i = 0; i < atom->nlocal; i++)
+    if (atom->mask[i] & groupbit) out.push_back(record(i));
+}
+
+void FixPowderMelt::reset_interval()
+{
+  finished.clear();
+  for (int i = 0; i < atom->nlocal; i++)
+    for (int k = I_MASS; k < NCOL; k++) melt[i][k] = 0.0;
+}
+
+bigint FixPowderMelt::remove_particles(const std::vector<tagint> &tags)
+{
+  return delete_local([&](int i) { return std::binary_search(tags.begin(), tags.end(), atom->tag[i]); });
 }

@@ -16,10 +16,12 @@ FixStyle(powder/melt,FixPowderMelt)
 #include "fix.h"
 
 #include "meltdem/coupling/drag.h"
+#include "meltdem/coupling/exchange_record.h"
 #include "meltdem/coupling/exact_sum.h"
 #include "meltdem/coupling/fluid_state.h"
 #include "meltdem/coupling/particle_melting.h"
 
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -70,16 +72,32 @@ class FixPowderMelt : public Fix {
   };
   const StepExchange *step_exchange() const { return exchange; }
 
+  // The coupling's view over a coupling interval of several steps (sub-cycles): what each
+  // particle handed over and took from the fluid since the last reset_interval(), one
+  // record per particle of the group now present on this rank plus one per particle
+  // deleted as fully molten during the interval (mass 0). Records carry the particle's
+  // state now (position, radius, velocity, T, h; mass 0 once fully molten).
+  void interval_records(std::vector<meltdem::coupling::ExchangeRecord> &out) const;
+  void reset_interval();
+  // remove the local particles whose tag is in `tags` (sorted) now, between runs, e.g.
+  // particles that left the continuum's mesh; collective; returns the global count
+  bigint remove_particles(const std::vector<tagint> &tags);
+  const meltdem::coupling::MeltMaterial &material() const { return mat; }
+
  private:
   // per-atom columns; dumps see TEMP and FRAC. MOLTEN = 1: fully molten, booked, removed
-  // at the next step's pre_exchange
-  enum { TEMP, FRAC, HSPEC, MASS0, MOLTEN, NCOL };
+  // at the next step's pre_exchange. I_* accumulate over the coupling interval: molten
+  // mass, enthalpy and momentum handed over, heat absorbed, drag impulse
+  enum { TEMP, FRAC, HSPEC, MASS0, MOLTEN, I_MASS, I_ENTH, I_PX, I_PY, I_PZ, I_HEAT, I_DX, I_DY, I_DZ, NCOL };
+  std::vector<meltdem::coupling::ExchangeRecord> finished;  // deleted this interval
+  meltdem::coupling::ExchangeRecord record(int i) const;
   meltdem::coupling::MeltMaterial mat;
   meltdem::coupling::DragModel drag_model;
   double T0;
   int ambient_flag;
   std::unique_ptr<meltdem::coupling::UniformFluid> ambient;
   const meltdem::coupling::FluidStateProvider *provider;
+  int in_setup;
 
   double **melt;           // per-atom state, columns above
   StepExchange *exchange;  // per-atom exchange of the last step
@@ -95,6 +113,7 @@ class FixPowderMelt : public Fix {
 
   void refresh_output(int i);
   int delete_molten();
+  bigint delete_local(const std::function<bool(int)> &doomed);
   const double *gravity(double *g) const;
 };
 

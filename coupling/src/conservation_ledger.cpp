@@ -181,10 +181,18 @@ const LedgerStep &ConservationLedger::end_step()
   for (int c = 0; c < kCategories; ++c)
     for (int q = 0; q < kComponents; ++q) s.booked[c][q] = g[c][q].value();
 
+  // momentum is a vector: each component's error is measured against the largest
+  // momentum magnitude seen, not against its own (possibly zero) component
+  double momentum_magnitude = 0.0;
+  for (int q = kMomX; q <= kMomZ; ++q) {
+    const double v = stored_total(g, q).value();
+    momentum_magnitude += v * v;
+  }
+  momentum_magnitude = std::sqrt(momentum_magnitude);
   for (int q = 0; q < kComponents; ++q) {
     const ExactSum total = stored_total(g, q);
     s.system_total[q] = total.value();
-    auto_scale_[q] = std::max(auto_scale_[q], std::abs(s.system_total[q]));
+    auto_scale_[q] = std::max(auto_scale_[q], q >= kMomX ? momentum_magnitude : std::abs(s.system_total[q]));
     const double floor = scale_[q] > 0.0 ? scale_[q] : auto_scale_[q];
     const double den_sys = std::max(std::abs(s.system_total[q]), floor);
     const double den_con = std::max(std::abs(s.booked[kContinuum][q]), floor);

@@ -77,14 +77,15 @@ void ParallelExchange::locate(const std::vector<ParticleShape> &local)
     if (!(p.radius > 0.0) || !std::isfinite(p.radius) || !p.x.allFinite())
       throw std::invalid_argument("particle exchange: radius " + std::to_string(p.radius) +
                                   " or position not finite/positive");
-    mine.insert(mine.end(), {p.x.x(), p.x.y(), p.x.z(), p.radius});
+    mine.insert(mine.end(), {p.x.x(), p.x.y(), p.x.z(), p.radius, double(p.id)});
   }
   std::vector<double> all;
-  allgather_doubles(mine, 4, comm_, all, counts_, displs_);
-  const std::size_t n = all.size() / 4;
+  allgather_doubles(mine, 5, comm_, all, counts_, displs_);
+  const std::size_t n = all.size() / 5;
   offset_ = std::size_t(displs_[rank_]);
   all_.resize(n);
-  for (std::size_t g = 0; g < n; ++g) all_[g] = {Eigen::Vector3d(all[4 * g], all[4 * g + 1], all[4 * g + 2]), all[4 * g + 3]};
+  for (std::size_t g = 0; g < n; ++g)
+    all_[g] = {Eigen::Vector3d(all[5 * g], all[5 * g + 1], all[5 * g + 2]), all[5 * g + 3], std::int64_t(all[5 * g + 4])};
 
   // the cell holding each centre: the lowest rank that finds it owns it
   std::vector<long> home(n, -1);
@@ -177,7 +178,7 @@ void ParallelExchange::locate(const std::vector<ParticleShape> &local)
   }
 }
 
-void ParallelExchange::sample(const CellFluidFields &f, std::vector<SampledFluid> &local_out) const
+void ParallelExchange::sample_global(const CellFluidFields &f, std::vector<SampledFluid> &out) const
 {
   if (!f.T || !f.k || !f.rho || !f.mu || !f.cp || !f.U)
     throw std::invalid_argument("particle exchange: T, k, rho, mu, cp and U are required to sample the fluid");
@@ -200,16 +201,22 @@ void ParallelExchange::sample(const CellFluidFields &f, std::vector<SampledFluid
     }
   }
   if (n) MPI_Allreduce(MPI_IN_PLACE, partial.data(), int(kFields * n), MPI_DOUBLE, MPI_SUM, comm_);
-  const std::size_t mine = std::size_t(counts_[rank_]);
-  local_out.assign(mine, SampledFluid());
-  for (std::size_t i = 0; i < mine; ++i) {
-    if (!inside_[offset_ + i]) continue;
-    const double *q = &partial[kFields * (offset_ + i)];
-    SampledFluid &s = local_out[i];
+  out.assign(n, SampledFluid());
+  for (std::size_t g = 0; g < n; ++g) {
+    if (!inside_[g]) continue;
+    const double *q = &partial[kFields * g];
+    SampledFluid &s = out[g];
     s.fluid.T = q[0], s.fluid.k = q[1], s.fluid.rho = q[2], s.fluid.mu = q[3], s.fluid.cp = q[4];
     for (int d = 0; d < 3; ++d) s.fluid.U[d] = q[5 + d];
     s.alpha_metal = q[8], s.liquid_fraction = q[9];
   }
+}
+
+void ParallelExchange::sample(const CellFluidFields &f, std::vector<SampledFluid> &local_out) const
+{
+  std::vector<SampledFluid> all;
+  sample_global(f, all);
+  local_out.assign(all.begin() + std::ptrdiff_t(offset_), all.begin() + std::ptrdiff_t(offset_) + counts_[rank_]);
 }
 
 void ParallelExchange::deposit(const std::vector<Amounts> &local_amounts, std::vector<Amounts> &cell_amounts) const

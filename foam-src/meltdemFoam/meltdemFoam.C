@@ -35,6 +35,8 @@ Description
 #include "surfaceForces.H"
 #include "laserHeatSource.H"
 #include "evaporationModel.H"
+#include "meltdemBalance.H"
+#include "particleCoupling.H"
 
 // * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * //
 
@@ -83,6 +85,17 @@ int main(int argc, char *argv[])
             #include "CourantNo.H"
             #include "alphaCourantNo.H"
             #include "setDeltaT.H"
+        }
+
+        if (particles.valid())
+        {
+            // LAMMPS advances first and fixes the step to the time it advanced
+            const volScalarField muMixture("muMixture", mixture.mu());
+            particles->advance
+            (
+                runTime,
+                {T, kappa, rho, muMixture, rhoCp, U, alpha1, liquidFraction}
+            );
         }
 
         ++runTime;
@@ -134,6 +147,13 @@ int main(int argc, char *argv[])
             #include "alphaControls.H"
             #include "alphaEqnSubCycle.H"
 
+            if (particles.valid())
+            {
+                // the metal melted this step (explicit: exactly what was handed over)
+                particles->addMetal(alpha1, alpha2);
+                rho == alpha1*rho1 + alpha2*rho2;
+            }
+
             mixture.correct();
 
             // energy with the same metal fluxes that moved alpha
@@ -158,6 +178,12 @@ int main(int argc, char *argv[])
         }
 
         runTime.write();
+
+        if (particles.valid())
+        {
+            particleBalance->execute();
+            particles->book(particleBalance());
+        }
 
         runTime.printExecutionTime(Info);
     }

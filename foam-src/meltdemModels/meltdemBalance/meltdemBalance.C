@@ -179,6 +179,10 @@ void Foam::functionObjects::meltdemBalance::start()
 
     stored(M0_, H0_, P0_);
     started_ = true;
+    last_ = stepBudget();
+    last_.M = M0_;
+    last_.H = H0_;
+    last_.P = P0_;
     lastIndex_ = time_.timeIndex();
 
     if (log)
@@ -191,6 +195,10 @@ void Foam::functionObjects::meltdemBalance::start()
             << ", laser " << (laser_ ? "on" : "off")
             << ", evaporation " << (evap_ ? "on" : "off") << nl;
     }
+
+    // sources() reduces over the ranks: every rank evaluates it before the master writes
+    scalar laserP = 0, evapP = 0;
+    sources(laserP, evapP);
 
     if (!Pstream::master()) return;
 
@@ -245,8 +253,6 @@ void Foam::functionObjects::meltdemBalance::start()
 
     // the start state as first row, flows zero
     const label nPer = 1 + (energy_ ? 2 : 0) + (momentum_ ? 3 : 0);
-    scalar laserP = 0, evapP = 0;
-    sources(laserP, evapP);
     writeRow
     (
         0, M0_, H0_, P0_, laserP, evapP, scalarList(nPer*patches_.size(), 0.0),
@@ -381,7 +387,8 @@ Foam::functionObjects::meltdemBalance::meltdemBalance
     M0_(0), H0_(0), P0_(Zero),
     massIn_(0), enthalpyIn_(0), laserE_(0), evapE_(0), enthalpyAbs_(0),
     momentumIn_(Zero), gravityImp_(Zero), momentumAbs_(0),
-    lastIndex_(-1)
+    lastIndex_(-1),
+    exchangeMass_(0), exchangeEnthalpy_(0), exchangeMomentum_(Zero)
 {
     readProperties();
     read(dict);
@@ -571,6 +578,42 @@ bool Foam::functionObjects::meltdemBalance::execute()
         }
     }
 
+    // matter the coupled particles handed over (net of what they took), registered by
+    // the particle coupling as rates per volume
+    scalar exMass = 0, exH = 0;
+    vector exP(Zero);
+    if (foundObject<volScalarField::Internal>("particleMassSource"))
+    {
+        exMass = dt*gSum(lookupObject<volScalarField::Internal>("particleMassSource").field()*V);
+    }
+    if (foundObject<volScalarField::Internal>("particleEnthalpySource"))
+    {
+        exH = dt*gSum(lookupObject<volScalarField::Internal>("particleEnthalpySource").field()*V);
+    }
+    if (foundObject<volVectorField::Internal>("particleMomentumSource"))
+    {
+        exP = dt*gSum(lookupObject<volVectorField::Internal>("particleMomentumSource").field()*V);
+    }
+    exchangeMass_ += exMass;
+    exchangeEnthalpy_ += exH;
+    exchangeMomentum_ += exP;
+    enthalpyAbs_ += mag(exH);
+    momentumAbs_ += mag(exP);
+
+    last_.M = M;
+    last_.H = H;
+    last_.P = P;
+    last_.dt = dt;
+    last_.massIn = dt*massStep;
+    last_.enthalpyIn = dt*enthalpyStep;
+    last_.momentumIn = dt*momentumStep;
+    last_.laserE = dt*laserP;
+    last_.evapE = dt*evapP;
+    last_.gravityImpulse = dt*gravityF;
+    last_.exchangeMass = exMass;
+    last_.exchangeEnthalpy = exH;
+    last_.exchangeMomentum = exP;
+
     massIn_ += dt*massStep;
     enthalpyIn_ += dt*enthalpyStep;
     laserE_ += dt*laserP;
@@ -580,12 +623,13 @@ bool Foam::functionObjects::meltdemBalance::execute()
     gravityImp_ += dt*gravityF;
     momentumAbs_ += dt*(momentumAbsStep + mag(gravityF));
 
-    const scalar massErr = (M - M0_) - massIn_;
-    const scalar massRel = massErr/max(mag(M0_), VSMALL);
-    const scalar HErr = (H - H0_) - enthalpyIn_ - laserE_ + evapE_;
+    const scalar massErr = (M - M0_) - massIn_ - exchangeMass_;
+    // relative to the larger of the metal at the start and now (a run may start empty)
+    const scalar massRel = massErr/max(max(mag(M0_), mag(M)), VSMALL);
+    const scalar HErr = (H - H0_) - enthalpyIn_ - laserE_ + evapE_ - exchangeEnthalpy_;
     const scalar HRel = HErr/max(mag(H0_), VSMALL);
     const scalar HRelX = exchangedRel(HErr, max(mag(H - H0_), enthalpyAbs_));
-    const vector PErr = (P - P0_) - momentumIn_ - gravityImp_;
+    const vector PErr = (P - P0_) - momentumIn_ - gravityImp_ - exchangeMomentum_;
     const scalar PRel = exchangedRel(mag(PErr), max(mag(P - P0_), momentumAbs_));
 
     if (log)

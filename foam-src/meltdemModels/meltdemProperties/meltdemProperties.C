@@ -54,7 +54,7 @@ meltdemProperties::meltdemProperties(const fvMesh& mesh)
     const wordList known
     {
         "flow", "energy", "darcy", "surfaceTension", "marangoni", "recoil", "laser",
-        "evaporation", "buoyancy"
+        "evaporation", "buoyancy", "particles"
     };
     for (const word& key : ph.toc())
     {
@@ -75,6 +75,7 @@ meltdemProperties::meltdemProperties(const fvMesh& mesh)
     physics_.laser = ph.getOrDefault<bool>("laser", false);
     physics_.evaporation = ph.getOrDefault<bool>("evaporation", false);
     physics_.buoyancy = ph.getOrDefault<bool>("buoyancy", false);
+    physics_.particles = ph.getOrDefault<bool>("particles", false);
 
     const auto needs = [&ph](bool on, const char* term, bool other, const char* what)
     {
@@ -94,6 +95,7 @@ meltdemProperties::meltdemProperties(const fvMesh& mesh)
     needs(physics_.darcy, "darcy", physics_.energy, "energy");
     needs(physics_.darcy, "darcy", physics_.flow, "flow");
     needs(physics_.surfaceTension, "surfaceTension", physics_.flow, "flow");
+    needs(physics_.particles, "particles", physics_.flow, "flow");
 
     if (physics_.energy)
     {

@@ -18,8 +18,9 @@
 // ('system' errors, sources = in - out - lost + feed + all external sources), where the
 // particle-to-continuum exchange cancels. The thesis' X_new can be ~0 (momentum of a gas at
 // rest), so the denominator is max(|X_new|, scale), scale = set_reference_scale() or, by
-// default, the largest |system total| seen so far for that component (an x-momentum error is
-// then measured against the largest momentum present, not divided by zero).
+// default, the largest |system total| seen so far for that component, for momentum the largest
+// momentum magnitude (an x-momentum error is measured against the momentum present, not
+// divided by a zero x component).
 // Cumulative errors: (sum of sources since the first step - (X_now - X_first)) / same denominator.
 //
 // MPI: every booking is kept as a compensated (double-double) sum; end_step gathers each

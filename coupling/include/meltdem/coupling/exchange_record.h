@@ -23,7 +23,7 @@ inline Amounts make_amounts(double mass, double enthalpy, const Eigen::Vector3d 
 struct ExchangeRecord {
   std::int64_t id = 0;                          // particle tag (global, stable)
   Eigen::Vector3d x = Eigen::Vector3d::Zero();  // position at the end of the step [m]
-  double radius = 0.0;                          // [m] (0 once fully molten)
+  double radius = 0.0;                          // [m] (the last solid radius once fully molten)
   Eigen::Vector3d v = Eigen::Vector3d::Zero();  // velocity at the end of the step [m/s]
   double T = 0.0;                               // temperature [K]
   double h = 0.0;                               // specific enthalpy [J/kg] (same reference as the continuum)

@@ -32,6 +32,7 @@ namespace meltdem::coupling {
 struct ParticleShape {
   Eigen::Vector3d x = Eigen::Vector3d::Zero();
   double radius = 0.0;
+  std::int64_t id = 0;  // particle tag (carried along for global lookups; < 2^53)
 };
 
 class ParallelExchange {
@@ -55,6 +56,13 @@ class ParallelExchange {
   // Collective. Fluid seen by each local particle (weighted cell means); entries of
   // particles outside the mesh are left default.
   void sample(const CellFluidFields &fields, std::vector<SampledFluid> &local_out) const;
+
+  // Collective. The same for every particle of every rank, in global order (global_id(g)
+  // names them): a particle that moves to another DEM rank during the interval still
+  // finds its fluid there.
+  void sample_global(const CellFluidFields &fields, std::vector<SampledFluid> &global_out) const;
+  std::int64_t global_id(std::int64_t g) const { return all_[std::size_t(g)].id; }
+  bool global_inside(std::int64_t g) const { return inside_[std::size_t(g)] != 0; }
 
   // Collective. Adds w_ic * amounts[i] of every particle i (all ranks) to cell c of this
   // rank: cell_amounts has one entry per local cell. Amounts of particles outside the

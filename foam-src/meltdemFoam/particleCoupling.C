@@ -1,0 +1,486 @@
+#include "particleCoupling.H"
+
+#include "OSspecific.H"
+#include "Time.H"
+#include "uniformDimensionedFields.H"
+
+#include <algorithm>
+#include <chrono>
+#include <fstream>
+#include <cmath>
+#include <unordered_map>
+
+namespace mc = ::meltdem::coupling;
+
+namespace
+{
+
+double seconds()
+{
+    using clock = std::chrono::steady_clock;
+    return std::chrono::duration<double>(clock::now().time_since_epoch()).count();
+}
+
+Foam::word requiredWord(const Foam::dictionary& d, const Foam::word& key)
+{
+    if (!d.found(key))
+    {
+        FatalIOErrorInFunction(d)
+            << "missing entry '" << key << "' in " << d.name() << Foam::exit(Foam::FatalIOError);
+    }
+    return d.get<Foam::word>(key);
+}
+
+} // End anonymous namespace
+
+
+Foam::meltdem::particleCoupling::particleCoupling
+(
+    const fvMesh& mesh,
+    const dictionary& meltdemDict,
+    const scalar rhoMetal
+)
+:
+    mesh_(mesh),
+    dict_(meltdemDict.optionalSubDict("particles")),
+    rhoMetal_(rhoMetal),
+    fixedSubSteps_(0),
+    comm_(MPI_COMM_NULL),
+    ownMpi_(false),
+    distMesh_(mesh),
+    model_(mc::DistributionModel::Neighbours),
+    massSource_
+    (
+        IOobject("particleMassSource", mesh.time().timeName(), mesh),
+        mesh, dimensionedScalar("zero", dimDensity/dimTime, 0)
+    ),
+    volumeSource_
+    (
+        IOobject("particleVolumeSource", mesh.time().timeName(), mesh),
+        mesh, dimensionedScalar("zero", dimless/dimTime, 0)
+    ),
+    enthalpySource_
+    (
+        IOobject("particleEnthalpySource", mesh.time().timeName(), mesh),
+        mesh, dimensionedScalar("zero", dimPower/dimVolume, 0)
+    ),
+    momentumSource_
+    (
+        IOobject("particleMomentumSource", mesh.time().timeName(), mesh),
+        mesh, dimensionedVector("zero", dimForce/dimVolume, Zero)
+    ),
+    subSteps_(0),
+    exchangeSeconds_(0),
+    lammpsSeconds_(0),
+    warnedStep_(false)
+{
+    if (!meltdemDict.found("particles") || !meltdemDict.isDict("particles"))
+    {
+        FatalIOErrorInFunction(meltdemDict)
+            << "physics { particles on; } needs the sub-dictionary 'particles'"
+            << " (lammpsInput, distribution)" << exit(FatalIOError);
+    }
+
+    const word distribution(requiredWord(dict_, "distribution"));
+    try
+    {
+        model_ = mc::parse_distribution_model(distribution);
+    }
+    catch (const std::invalid_argument& e)
+    {
+        FatalIOErrorInFunction(dict_)
+            << "distribution: " << e.what() << exit(FatalIOError);
+    }
+
+    if (dict_.found("demStepsPerFluidStep"))
+    {
+        const ITstream& is = dict_.lookup("demStepsPerFluidStep");
+        const token& t = is[0];
+        if (t.isWord() && t.wordToken() == "auto")
+        {
+            fixedSubSteps_ = 0;
+        }
+        else
+        {
+            fixedSubSteps_ = dict_.get<label>("demStepsPerFluidStep");
+            if (fixedSubSteps_ < 1)
+            {
+                FatalIOErrorInFunction(dict_)
+                    << "demStepsPerFluidStep must be auto or >= 1, not "
+                    << fixedSubSteps_ << exit(FatalIOError);
+            }
+        }
+    }
+
+    // the case folder (not processorN/): LAMMPS reads one input for all ranks
+    const fileName input(mesh.time().globalPath()/requiredWord(dict_, "lammpsInput"));
+    const fileName log
+    (
+        mesh.time().globalPath()/dict_.getOrDefault<word>("lammpsLog", "log.lammps")
+    );
+    Info<< "Particles: LAMMPS input " << input << ", log " << log
+        << ", distribution " << mc::to_string(model_) << endl;
+    // OpenFOAM initialises MPI only with -parallel; LAMMPS and the exchange need it
+    // always. Both get their own communicator, apart from OpenFOAM's messages.
+    int initialised = 0;
+    MPI_Initialized(&initialised);
+    if (!initialised)
+    {
+        MPI_Init(nullptr, nullptr);
+        ownMpi_ = true;
+    }
+    MPI_Comm_dup(MPI_COMM_WORLD, &comm_);
+    try
+    {
+        lammps_.reset
+        (
+            new ::meltdem::LammpsCouplingHost
+            (
+                comm_, input, log, false
+            )
+        );
+    }
+    catch (const ::meltdem::LammpsSetupError& e)
+    {
+        FatalIOErrorInFunction(dict_)
+            << "lammpsInput: " << e.what() << exit(FatalIOError);
+    }
+
+    checkMaterial(meltdemDict);
+    checkDomains();
+
+    exchange_.reset(new mc::ParallelExchange(distMesh_, model_, comm_));
+    ledger_.reset(new mc::ConservationLedger(comm_));
+    const fileName dir(mesh.time().globalPath()/"postProcessing"/"particleLedger");
+    if (Pstream::master()) mkDir(dir);
+    ledger_->open_csv(dir/"ledger.csv");
+    if (Pstream::master())
+    {
+        particlesCsv_.reset(new std::ofstream(dir/"particles.csv"));
+        *particlesCsv_
+            << "time,dt,dem_steps,particles,solid_mass,particle_enthalpy,heat_absorbed,"
+            << "mass_melted,enthalpy_handed_over,momentum_handed_over_x,"
+            << "momentum_handed_over_y,momentum_handed_over_z,drag_impulse_x,"
+            << "drag_impulse_y,drag_impulse_z,exchange_seconds,lammps_seconds\n";
+    }
+
+    Info<< "Particles: " << lammps_->particles() << " particles, DEM step "
+        << lammps_->timestep() << " s, coupling interval "
+        << (fixedSubSteps_ ? name(fixedSubSteps_) + " DEM steps" : word("auto"))
+        << nl << endl;
+}
+
+
+Foam::meltdem::particleCoupling::~particleCoupling()
+{
+    lammps_.reset();
+    exchange_.reset();
+    ledger_.reset();
+    MPI_Comm_free(&comm_);
+    if (ownMpi_) MPI_Finalize();
+}
+
+
+void Foam::meltdem::particleCoupling::checkMaterial(const dictionary& meltdemDict) const
+{
+    const mc::MeltMaterial& p = lammps_->material();
+    const bool energy =
+        meltdemDict.subDict("physics").getOrDefault<bool>("energy", false);
+    if (!energy) return;
+    const dictionary& md = meltdemDict.subDict("metal");
+    const scalar cp = md.get<scalar>("cp"), L = md.get<scalar>("L");
+    const scalar Ts = md.get<scalar>("Tsolidus"), Tl = md.get<scalar>("Tliquidus");
+    // the particles hand over cp Tm + L per kilogram (eq. 2.9); the continuum must
+    // read that as liquid metal at Tm, so both sides need the same material
+    if (mag(p.cp - cp) > 1e-9*cp)
+    {
+        FatalIOErrorInFunction(md)
+            << "cp " << cp << " differs from fix " << lammps_->melt_fix_id()
+            << " powder/melt cp " << p.cp << ": particles and melt must be the same metal"
+            << exit(FatalIOError);
+    }
+    if (mag(p.latent - L) > 1e-9*max(L, SMALL))
+    {
+        FatalIOErrorInFunction(md)
+            << "L " << L << " differs from fix " << lammps_->melt_fix_id()
+            << " powder/melt latent " << p.latent << exit(FatalIOError);
+    }
+    if (p.Tmelt < Ts - 1e-9 || p.Tmelt > Tl + 1e-9)
+    {
+        FatalIOErrorInFunction(md)
+            << "fix " << lammps_->melt_fix_id() << " powder/melt Tmelt " << p.Tmelt
+            << " is outside [Tsolidus, Tliquidus] = [" << Ts << ", " << Tl << "]"
+            << exit(FatalIOError);
+    }
+}
+
+
+void Foam::meltdem::particleCoupling::checkDomains() const
+{
+    const boundBox mb(distMesh_.globalBounds());
+    double lo[3], hi[3];
+    int periodic[3];
+    lammps_->box(lo, hi, periodic);
+    const scalar tol = 1e-9*mag(mb.span());
+    const char* axis = "xyz";
+    for (direction d = 0; d < 3; ++d)
+    {
+        const bool covers = lo[d] <= mb.min()[d] + tol && hi[d] >= mb.max()[d] - tol;
+        const bool equal = mag(lo[d] - mb.min()[d]) <= tol && mag(hi[d] - mb.max()[d]) <= tol;
+        if (!covers || (periodic[d] && !equal))
+        {
+            FatalIOErrorInFunction(dict_)
+                << "mismatched domains: the LAMMPS box in " << axis[d] << " is ["
+                << lo[d] << ", " << hi[d] << "], the mesh spans [" << mb.min()[d]
+                << ", " << mb.max()[d] << "]. The box must contain the mesh (particles "
+                << "leaving the mesh are booked as outflow before LAMMPS could lose "
+                << "them) and equal it along periodic directions"
+                << exit(FatalIOError);
+        }
+    }
+
+    // every particle must start inside the mesh
+    std::vector<mc::ExchangeRecord> now;
+    lammps_->local_particles(now);
+    std::vector<mc::ParticleShape> shapes;
+    for (const auto& r : now) shapes.push_back({r.x, r.radius, r.id});
+    mc::ParallelExchange probe(distMesh_, mc::DistributionModel::Centre, comm_);
+    probe.locate(shapes);
+    for (std::int64_t g = 0; g < probe.global_particles(); ++g)
+    {
+        if (!probe.global_inside(g))
+        {
+            FatalIOErrorInFunction(dict_)
+                << "particle " << probe.global_id(g) << " of " << dict_.get<word>("lammpsInput")
+                << " is outside the mesh at the start; move it inside or enlarge the mesh"
+                << exit(FatalIOError);
+        }
+    }
+}
+
+
+void Foam::meltdem::particleCoupling::advance(Time& runTime, const fluidFields& f)
+{
+    double t0 = seconds();
+    const label nCells = mesh_.nCells();
+
+    // 1. the fluid each particle sees, fixed over the step
+    std::vector<mc::ExchangeRecord> start;
+    lammps_->local_particles(start);
+    std::vector<mc::ParticleShape> shapes;
+    shapes.reserve(start.size());
+    for (const auto& r : start) shapes.push_back({r.x, r.radius, r.id});
+    exchange_->locate(shapes);
+
+    const scalarField cp(f.rhoCp.primitiveField()/f.rho.primitiveField());
+    const mc::CellFluidFields cells
+    {
+        f.T.primitiveField().cdata(),
+        f.kappa.primitiveField().cdata(),
+        f.rho.primitiveField().cdata(),
+        f.mu.primitiveField().cdata(),
+        cp.cdata(),
+        reinterpret_cast<const double*>(f.U.primitiveField().cdata()),
+        f.alphaMetal.primitiveField().cdata(),
+        f.liquidFraction.primitiveField().cdata()
+    };
+    std::vector<mc::SampledFluid> sampled;
+    exchange_->sample_global(cells, sampled);
+    std::unordered_map<std::int64_t, mc::FluidState> fluid;
+    for (std::int64_t g = 0; g < exchange_->global_particles(); ++g)
+    {
+        if (exchange_->global_inside(g)) fluid[exchange_->global_id(g)] = sampled[g].fluid;
+    }
+    lammps_->set_fluid(std::move(fluid));
+
+    // 2. whole DEM steps up to the fluid step
+    const scalar dtDem = lammps_->timestep();
+    const scalar dtFluid = runTime.deltaTValue();
+    label n = fixedSubSteps_;
+    if (!n)
+    {
+        n = max(label(1), label(std::floor(dtFluid/dtDem*(1 + 1e-12))));
+        if (dtDem > dtFluid*(1 + 1e-12) && !warnedStep_)
+        {
+            WarningInFunction
+                << "the DEM step " << dtDem << " s exceeds the fluid step " << dtFluid
+                << " s the Courant limit allows; the fluid runs at the DEM step"
+                << " (lower the DEM step or maxCo)" << endl;
+            warnedStep_ = true;
+        }
+    }
+    const scalar remaining = runTime.endTime().value() - runTime.value();
+    n = min(n, max(label(1), label(std::ceil(remaining/dtDem - 1e-9))));
+
+    const std::int64_t before = lammps_->particles();
+    const double tLmp0 = lammps_->time();
+    exchangeSeconds_ += seconds() - t0;
+    const double w0 = seconds();
+    std::vector<mc::ExchangeRecord> records;
+    lammps_->advance(int(n), records);
+    lammpsSeconds_ += seconds() - w0;
+    t0 = seconds();
+    subSteps_ = n;
+    const scalar elapsed = lammps_->time() - tLmp0;
+    runTime.setDeltaT(elapsed, false);
+
+    // particles lost by LAMMPS itself cannot be booked: refuse to go on
+    std::int64_t nRecords = std::int64_t(records.size());
+    MPI_Allreduce(MPI_IN_PLACE, &nRecords, 1, MPI_INT64_T, MPI_SUM, comm_);
+    if (nRecords < before)
+    {
+        FatalErrorInFunction
+            << "LAMMPS lost " << before - nRecords << " particle(s) during the step "
+            << "(they left its box); make the LAMMPS box larger than the mesh so that "
+            << "particles leave the mesh first and are booked as outflow"
+            << exit(FatalError);
+    }
+
+    // 3./4. where each particle is now: inside -> deposit, outside -> outflow
+    shapes.clear();
+    for (const auto& r : records) shapes.push_back({r.x, r.radius, r.id});
+    exchange_->locate(shapes);
+    inside_.clear();
+    lost_.clear();
+    std::vector<mc::Amounts> amounts;
+    std::vector<std::int64_t> leaving;
+    for (std::size_t i = 0; i < records.size(); ++i)
+    {
+        if (exchange_->inside(i))
+        {
+            inside_.push_back(records[i]);
+            amounts.push_back(mc::net_to_continuum(records[i]));
+        }
+        else
+        {
+            lost_.push_back(records[i]);
+            amounts.push_back(mc::Amounts{});
+            if (records[i].mass > 0) leaving.push_back(records[i].id);
+        }
+    }
+    std::vector<mc::Amounts> deposited(std::size_t(nCells), mc::Amounts{});
+    exchange_->deposit(amounts, deposited);
+
+    const scalarField& V = mesh_.V();
+    forAll(V, celli)
+    {
+        const mc::Amounts& a = deposited[celli];
+        const scalar rate = 1/(V[celli]*elapsed);
+        massSource_[celli] = a[mc::kMass]*rate;
+        volumeSource_[celli] = massSource_[celli]/rhoMetal_;
+        enthalpySource_[celli] = a[mc::kEnthalpy]*rate;
+        momentumSource_[celli] = vector(a[mc::kMomX], a[mc::kMomY], a[mc::kMomZ])*rate;
+    }
+
+    std::int64_t nLeaving = std::int64_t(leaving.size());
+    MPI_Allreduce(MPI_IN_PLACE, &nLeaving, 1, MPI_INT64_T, MPI_SUM, comm_);
+    if (nLeaving)
+    {
+        lammps_->remove(leaving);
+        Info<< "Particles: " << nLeaving << " left the mesh (booked as outflow)" << endl;
+    }
+    exchangeSeconds_ += seconds() - t0;
+
+    Info<< "Particles: " << lammps_->particles() << " in " << n << " DEM steps of "
+        << dtDem << " s; handed over " << gSum(massSource_.field()*V)*elapsed
+        << " kg of metal" << endl;
+}
+
+
+void Foam::meltdem::particleCoupling::addMetal
+(
+    volScalarField& alpha1,
+    volScalarField& alpha2
+) const
+{
+    const scalar dt = mesh_.time().deltaTValue();
+    alpha1.primitiveFieldRef() += volumeSource_.field()*dt;
+    alpha1.correctBoundaryConditions();
+    alpha2 = 1.0 - alpha1;
+}
+
+
+void Foam::meltdem::particleCoupling::book(const functionObjects::meltdemBalance& balance)
+{
+    const functionObjects::meltdemBalance::stepBudget& b = balance.lastStep();
+    mc::ConservationLedger& L = *ledger_;
+    L.begin_step(mesh_.time().value(), mesh_.time().deltaTValue());
+    for (const auto& r : inside_) L.book_particle(r);
+    for (const auto& r : lost_)
+    {
+        // outside the mesh nothing was deposited: its melt leaves with it
+        mc::ExchangeRecord kept(r);
+        kept.mass_out = 0;
+        kept.enthalpy_out = 0;
+        kept.momentum_out = Eigen::Vector3d::Zero();
+        kept.heat_absorbed = 0;
+        kept.impulse_from_fluid = Eigen::Vector3d::Zero();
+        L.book_lost(kept);
+        L.book(mc::kLost, mc::make_amounts(r.mass_out, r.enthalpy_out, r.momentum_out));
+    }
+    if (Pstream::master())
+    {
+        L.book(mc::kContinuum, mc::make_amounts(b.M, b.H, Eigen::Vector3d(b.P.x(), b.P.y(), b.P.z())));
+        const mc::Amounts through = mc::make_amounts
+        (
+            b.massIn, b.enthalpyIn,
+            Eigen::Vector3d(b.momentumIn.x(), b.momentumIn.y(), b.momentumIn.z())
+        );
+        for (int q = 0; q < mc::kComponents; ++q)
+        {
+            if (through[q] >= 0)
+            {
+                L.book(mc::kBoundaryIn, mc::Component(q), through[q]);
+            }
+            else
+            {
+                L.book(mc::kBoundaryOut, mc::Component(q), -through[q]);
+            }
+        }
+        L.book
+        (
+            mc::kContinuumSource,
+            mc::make_amounts
+            (
+                0, b.laserE - b.evapE,
+                Eigen::Vector3d(b.gravityImpulse.x(), b.gravityImpulse.y(), b.gravityImpulse.z())
+            )
+        );
+    }
+    const mc::LedgerStep& s = L.end_step();
+
+    // what the particles did this step (global sums), for plots and the heat split
+    double sums[12] = {};
+    for (const auto* list : {&inside_, &lost_})
+    {
+        for (const auto& r : *list)
+        {
+            sums[0] += r.mass;
+            sums[1] += r.mass*r.h;
+            sums[2] += r.heat_absorbed;
+            sums[3] += r.mass_out;
+            sums[4] += r.enthalpy_out;
+            for (int d = 0; d < 3; ++d)
+            {
+                sums[5 + d] += r.momentum_out[d];
+                sums[8 + d] += r.impulse_from_fluid[d];
+            }
+        }
+    }
+    MPI_Allreduce(MPI_IN_PLACE, sums, 11, MPI_DOUBLE, MPI_SUM, comm_);
+    if (particlesCsv_)
+    {
+        std::ostream& o = *particlesCsv_;
+        o.precision(17);
+        o << mesh_.time().value() << ',' << mesh_.time().deltaTValue() << ',' << subSteps_
+          << ',' << s.particles;
+        for (int k = 0; k < 11; ++k) o << ',' << sums[k];
+        o << ',' << exchangeSeconds_ << ',' << lammpsSeconds_ << '\n';
+        o.flush();
+    }
+    Info<< "Particle ledger: continuum relative errors mass "
+        << s.continuum_error[mc::kMass] << " enthalpy " << s.continuum_error[mc::kEnthalpy]
+        << " momentum (" << s.continuum_error[mc::kMomX] << " "
+        << s.continuum_error[mc::kMomY] << " " << s.continuum_error[mc::kMomZ] << ")"
+        << nl << endl;
+}

@@ -1,0 +1,180 @@
+// LammpsCouplingHost: LAMMPS driven from meltdemFoam's time loop (see the header).
+#include "lammps_coupling_host.h"
+
+#include "fix_powder_melt.h"
+#include "lammps_version_guard.h"
+#include "meltdem_styles.h"
+
+#include "atom.h"
+#include "domain.h"
+#include "fix.h"
+#include "input.h"
+#include "lammps.h"
+#include "modify.h"
+#include "update.h"
+#include "version.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+
+namespace mc = meltdem::coupling;
+using namespace LAMMPS_NS;
+
+namespace meltdem {
+
+namespace {
+
+// the fluid of each particle by tag, fixed over one coupling interval
+class TagFluidProvider : public mc::FluidStateProvider {
+ public:
+  explicit TagFluidProvider(LAMMPS *lmp) : lmp_(lmp) {}
+  bool fluid_state(int index, const double *, mc::FluidState &out) const override
+  {
+    const auto it = fluid.find(std::int64_t(lmp_->atom->tag[index]));
+    if (it == fluid.end()) return false;
+    out = it->second;
+    return true;
+  }
+  std::unordered_map<std::int64_t, mc::FluidState> fluid;
+
+ private:
+  LAMMPS *lmp_;
+};
+
+}  // namespace
+
+struct LammpsCouplingHost::Impl {
+  LAMMPS *lmp = nullptr;
+  FixPowderMelt *melt = nullptr;
+  std::unique_ptr<TagFluidProvider> provider;
+  bool needs_setup = true;
+  int me = 0;
+};
+
+LammpsCouplingHost::LammpsCouplingHost(MPI_Comm comm, const std::string &input_file, const std::string &log_file,
+                                       bool echo)
+  : impl_(std::make_unique<Impl>())
+{
+  MPI_Comm_rank(comm, &impl_->me);
+  {
+    std::ifstream probe(input_file);
+    int ok = probe.good() ? 1 : 0, all = 0;
+    MPI_Allreduce(&ok, &all, 1, MPI_INT, MPI_MIN, comm);
+    if (!all) throw LammpsSetupError("cannot open the LAMMPS input file " + input_file);
+  }
+  std::vector<std::string> args = {"meltdemFoam-lammps", "-log", log_file, "-nocite"};
+  if (!echo) args.insert(args.end(), {"-echo", "none"});
+  std::vector<char *> argv;
+  for (auto &a : args) argv.push_back(a.data());
+  impl_->lmp = new LAMMPS(int(argv.size()), argv.data(), comm);
+  const std::string mismatch = lammps_version_mismatch(impl_->lmp, LAMMPS_VERSION);
+  if (!mismatch.empty()) throw LammpsSetupError(mismatch);
+  register_lammps_styles(impl_->lmp);
+
+  // setup errors reach the terminal (LAMMPS prints them to screen and log, then stops);
+  // once the input is read, per-run output goes to the log only
+  impl_->lmp->input->file(input_file.c_str());
+
+  LAMMPS *lmp = impl_->lmp;
+  if (std::strcmp(lmp->update->unit_style, "si") != 0)
+    throw LammpsSetupError(std::string("the LAMMPS input ") + input_file + " uses units " +
+                           lmp->update->unit_style + "; the coupling exchanges SI quantities: use units si");
+  if (!lmp->domain->box_exist) throw LammpsSetupError("the LAMMPS input " + input_file + " defines no simulation box");
+  int nmelt = 0;
+  for (int i = 0; i < lmp->modify->nfix; i++)
+    if (std::strcmp(lmp->modify->fix[i]->style, "powder/melt") == 0) {
+      impl_->melt = dynamic_cast<FixPowderMelt *>(lmp->modify->fix[i]);
+      ++nmelt;
+    }
+  if (nmelt != 1)
+    throw LammpsSetupError("the LAMMPS input " + input_file + " defines " + std::to_string(nmelt) +
+                           " fix powder/melt; the coupling needs exactly one (its cp, Tmelt and latent are "
+                           "the particles' material)");
+  impl_->provider = std::make_unique<TagFluidProvider>(lmp);
+  impl_->melt->set_fluid_provider(impl_->provider.get());
+  // initialise every style once (fix gravity sets its vector only in init)
+  if (impl_->me == 0 && lmp->screen) fflush(lmp->screen);
+  lmp->screen = nullptr;
+  lmp->input->one("run 0 post no");
+}
+
+LammpsCouplingHost::~LammpsCouplingHost()
+{
+  delete impl_->lmp;
+}
+
+double LammpsCouplingHost::timestep() const { return impl_->lmp->update->dt; }
+
+double LammpsCouplingHost::time() const
+{
+  const Update *u = impl_->lmp->update;
+  return u->atime + double(u->ntimestep - u->atimestep) * u->dt;
+}
+
+std::int64_t LammpsCouplingHost::step() const { return std::int64_t(impl_->lmp->update->ntimestep); }
+
+std::int64_t LammpsCouplingHost::particles() const { return std::int64_t(impl_->lmp->atom->natoms); }
+
+void LammpsCouplingHost::box(double lo[3], double hi[3], int periodic[3]) const
+{
+  const Domain *d = impl_->lmp->domain;
+  for (int k = 0; k < 3; k++) lo[k] = d->boxlo[k], hi[k] = d->boxhi[k], periodic[k] = d->periodicity[k];
+}
+
+double LammpsCouplingHost::gravity(double g[3]) const
+{
+  g[0] = g[1] = g[2] = 0.0;
+  Modify *modify = impl_->lmp->modify;
+  for (int i = 0; i < modify->nfix; i++)
+    if (std::strncmp(modify->fix[i]->style, "gravity", 7) == 0) {
+      int dim;
+      auto *gvec = static_cast<double *>(modify->fix[i]->extract("gvec", dim));
+      if (gvec)
+        for (int k = 0; k < 3; k++) g[k] += gvec[k];
+    }
+  return std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
+}
+
+const mc::MeltMaterial &LammpsCouplingHost::material() const { return impl_->melt->material(); }
+
+std::string LammpsCouplingHost::melt_fix_id() const { return impl_->melt->id; }
+
+void LammpsCouplingHost::local_particles(std::vector<mc::ExchangeRecord> &out) const
+{
+  impl_->melt->interval_records(out);
+}
+
+void LammpsCouplingHost::set_fluid(std::unordered_map<std::int64_t, mc::FluidState> fluid)
+{
+  impl_->provider->fluid = std::move(fluid);
+}
+
+void LammpsCouplingHost::advance(int n, std::vector<mc::ExchangeRecord> &records)
+{
+  if (n < 1) throw std::invalid_argument("LammpsCouplingHost::advance: n must be >= 1");
+  impl_->melt->reset_interval();
+  const std::string cmd = "run " + std::to_string(n) + (impl_->needs_setup ? " post no" : " pre no post no");
+  impl_->lmp->input->one(cmd.c_str());
+  impl_->needs_setup = false;
+  impl_->melt->interval_records(records);
+}
+
+std::int64_t LammpsCouplingHost::remove(const std::vector<std::int64_t> &tags)
+{
+  std::vector<tagint> sorted(tags.begin(), tags.end());
+  std::sort(sorted.begin(), sorted.end());
+  const bigint n = impl_->melt->remove_particles(sorted);
+  if (n) impl_->needs_setup = true;
+  return std::int64_t(n);
+}
+
+void LammpsCouplingHost::command(const std::string &line)
+{
+  impl_->lmp->input->one(line.c_str());
+  impl_->needs_setup = true;
+}
+
+}  // namespace meltdem

@@ -1,0 +1,74 @@
+#pragma once
+// LAMMPS inside another code's MPI job (issue 5): meltdemFoam owns the time loop and
+// drives a LAMMPS instance built from the case's input script through this class. The
+// header has no LAMMPS headers, so OpenFOAM translation units can include it.
+//
+// Per coupling interval the host: sets the fluid each particle sees (by particle tag,
+// fixed over the interval), advances LAMMPS by whole DEM steps (sub-cycles; fix
+// powder/dt may resize them), and collects one exchange record per particle: what it
+// handed over (melt: mass, enthalpy, momentum) and took (heat, drag impulse) over the
+// interval. Particles the continuum reports outside its mesh are removed here and
+// booked by the caller as outflow.
+#include "meltdem/coupling/exchange_record.h"
+#include "meltdem/coupling/fluid_state.h"
+#include "meltdem/coupling/particle_melting.h"
+
+#include <mpi.h>
+
+#include <cstdint>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+namespace meltdem {
+
+// A setup problem the caller reports in its own style (FatalError for OpenFOAM).
+struct LammpsSetupError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+class LammpsCouplingHost {
+ public:
+  // Opens LAMMPS on comm (log to log_file, no screen output unless echo), checks the
+  // library against the headers, registers MeltDEM's styles, runs input_file. The input
+  // must use units si, define exactly one fix powder/melt, and not end inside a run.
+  LammpsCouplingHost(MPI_Comm comm, const std::string &input_file, const std::string &log_file, bool echo);
+  ~LammpsCouplingHost();
+  LammpsCouplingHost(const LammpsCouplingHost &) = delete;
+  LammpsCouplingHost &operator=(const LammpsCouplingHost &) = delete;
+
+  double timestep() const;  // current DEM step [s]
+  double time() const;      // simulated time of LAMMPS [s]
+  std::int64_t step() const;
+  std::int64_t particles() const;  // global number of atoms
+  void box(double lo[3], double hi[3], int periodic[3]) const;
+  double gravity(double g[3]) const;  // sum of fix gravity vectors; returns |g|
+  const coupling::MeltMaterial &material() const;
+  std::string melt_fix_id() const;
+
+  // the particles of the melt group on this rank now (state only; exchange fields zero
+  // unless an interval is open)
+  void local_particles(std::vector<coupling::ExchangeRecord> &out) const;
+
+  // the fluid each particle sees over the next advance(); particles without an entry see
+  // no fluid (they neither heat nor feel drag). Keys are particle tags.
+  void set_fluid(std::unordered_map<std::int64_t, coupling::FluidState> fluid);
+
+  // run n DEM steps; records: this rank's particles with their interval exchange
+  // (including particles that melted away during the interval)
+  void advance(int n, std::vector<coupling::ExchangeRecord> &records);
+
+  // remove particles (any rank may list any tag; collective); returns how many went
+  std::int64_t remove(const std::vector<std::int64_t> &tags);
+
+  // execute one LAMMPS command (e.g. write_restart) between intervals
+  void command(const std::string &line);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace meltdem
