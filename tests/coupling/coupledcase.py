@@ -3,7 +3,6 @@
 (serial, or decomposed with mpirun -np N). The 2D writers of tests/support/foamcase.py do
 the dictionaries they share."""
 import os
-import subprocess
 import sys
 
 import numpy as np
@@ -79,3 +78,95 @@ def particles_csv(case):
     path = os.path.join(case, "postProcessing", "particleLedger", "particles.csv")
     d = np.genfromtxt(path, delimiter=",", names=True)
     return d.reshape(1) if d.ndim == 0 else d
+
+
+# Thesis 2.3 channel (tables 2.1-2.3): hot artificial argon flowing down a square channel.
+GAS = dict(rho=1.6115, cp=5210.928, k=100.0, mu=2.1e-5, T=1500.0)
+CHANNEL = dict(lx=2.1e-3, ly=18.2e-3, lz=2.1e-3, h=0.7e-3, u=-2.0)
+
+
+def channel_case(case, model, particle, channel=None, gas=None, t_end=8.5e-3, fluid_dt=1e-5,
+                 dem_dt=1e-6, max_co=0.5, metal_k=30.0, extra_lammps="", g=(0.0, 0.0, 0.0)):
+    """A box channel along y (inlet ymax with U = (0, u, 0), outlet ymin, slip walls), gas at
+    rest or flowing, one particle from LAMMPS. particle: dict d, rho, cp, Tm, L, T0, x, y, z,
+    v (velocity vector) and held (no time integration: the particle stays where it is).
+    The fluid step is fluid_dt at most (Courant max_co); solver tolerances are tight, since the
+    balances are only as exact as the linear solves."""
+    ch = dict(CHANNEL, **(channel or {}))
+    gs = dict(GAS, **(gas or {}))
+    p = particle
+    n = (round(ch["lx"] / ch["h"]), round(ch["ly"] / ch["h"]), round(ch["lz"] / ch["h"]))
+    u, T = ch["u"], gs["T"]
+    box_mesh(case, (0, 0, 0), (ch["lx"], ch["ly"], ch["lz"]), n,
+             {"inlet": ("patch", ["ymax"]), "outlet": ("patch", ["ymin"]),
+              "walls": ("wall", ["xmin", "xmax", "zmin", "zmax"])})
+    uniform_field(case, "alpha.metal", "[0 0 0 0 0 0 0]", 0.0,
+                  {"inlet": "type fixedValue; value uniform 0;",
+                   "outlet": "type zeroGradient;", "walls": "type zeroGradient;"})
+    uniform_field(case, "T", "[0 0 0 1 0 0 0]", T,
+                  {"inlet": f"type fixedValue; value uniform {T!r};",
+                   "outlet": f"type inletOutlet; inletValue uniform {T!r}; value uniform {T!r};",
+                   "walls": "type zeroGradient;"})
+    uniform_field(case, "U", "[0 1 -1 0 0 0 0]", (0.0, u, 0.0),
+                  {"inlet": f"type fixedValue; value uniform (0 {u!r} 0);",
+                   "outlet": "type zeroGradient;", "walls": "type slip;"}, vector=True)
+    uniform_field(case, "p_rgh", "[1 -1 -2 0 0 0 0]", 0.0,
+                  {"inlet": "type fixedFluxPressure; value uniform 0;",
+                   "outlet": "type fixedValue; value uniform 0;",
+                   "walls": "type fixedFluxPressure; value uniform 0;"})
+    fc.transport(case, p["rho"], 6e-3 / p["rho"], gs["rho"], gs["mu"] / gs["rho"], 0.0)
+    fc.gravity(case, g)
+    fc.control_dict(case, "meltdemFoam", t_end, fluid_dt, t_end / 4, max_co=max_co, max_alpha_co=max_co,
+                    max_dt=fluid_dt)
+    fc.fv_schemes(case)
+    fc.fv_solution(case, n_correctors=3)
+    sol = os.path.join(case, "system", "fvSolution")
+    txt = open(sol).read()
+    txt = txt.replace("tolerance 1e-10; relTol 0;\n    }", "tolerance 1e-14; relTol 0;\n    }", 1)
+    txt = txt.replace("p_rgh { solver PCG; preconditioner DIC; tolerance 1e-9; relTol 0.01; }",
+                      "p_rgh { solver PCG; preconditioner DIC; tolerance 1e-14; relTol 0; }")
+    txt = txt.replace('"U.*" { solver smoothSolver; smoother symGaussSeidel; tolerance 1e-9; relTol 0; }',
+                      '"U.*" { solver smoothSolver; smoother symGaussSeidel; tolerance 1e-15; relTol 0; }')
+    txt = txt.replace('"T.*" { solver PBiCGStab; preconditioner DILU; tolerance 1e-10; relTol 0; }',
+                      '"T.*" { solver PBiCGStab; preconditioner DILU; tolerance 1e-15; relTol 0; }')
+    txt = txt.replace('relaxationFactors { equations { ".*" 1; } }', "")
+    open(sol, "w").write(txt)
+    fc.meltdem_properties(case, physics=dict(energy="on", surfaceTension="off", particles="on"), extra=f"""
+metal {{ cp {p["cp"]!r}; k {metal_k!r}; L {p["L"]!r}; Tsolidus {p["Tm"] - 1!r}; Tliquidus {p["Tm"]!r}; }}
+gas {{ cp {gs["cp"]!r}; k {gs["k"]!r}; }}
+energyControls {{ nCorrectors 50; tolerance 1e-13; }}
+particles
+{{
+    lammpsInput     in.particles;
+    distribution    {model};
+    demStepsPerFluidStep auto;
+}}
+""")
+    fc.run(["blockMesh"], case, "log.blockMesh")
+    m = 1e-4
+    v = p.get("v", (0.0, u, 0.0))
+    integrate = "" if p.get("held") else "fix integrate all nve/sphere"
+    gravity = "" if not any(g) else (f"fix gravity all gravity {float(np.linalg.norm(g))!r} vector "
+                                     f"{g[0]!r} {g[1]!r} {g[2]!r}")
+    with open(os.path.join(case, "in.particles"), "w") as f:
+        f.write(f"""# one particle in the channel, coupled
+units si
+atom_style sphere 1
+dimension 3
+boundary f f f
+region box block {-m!r} {ch["lx"] + m!r} {-m!r} {ch["ly"] + m!r} {-m!r} {ch["lz"] + m!r}
+create_box 1 box
+create_atoms 1 single {p.get("x", ch["lx"] / 2)!r} {p["y"]!r} {p.get("z", ch["lz"] / 2)!r}
+set atom 1 diameter {p["d"]!r} density {p["rho"]!r}
+velocity all set {v[0]!r} {v[1]!r} {v[2]!r}
+comm_modify cutoff {2 * p["d"]!r}
+neighbor 1e-5 bin
+timestep {dem_dt!r}
+{integrate}
+{gravity}
+fix melt all powder/melt cp {p["cp"]!r} Tmelt {p["Tm"]!r} latent {p["L"]!r} temp {p.get("T0", 0.0)!r}
+{extra_lammps}
+thermo_style custom step time atoms f_melt[1] f_melt[2] f_melt[6]
+thermo_modify format float %.12g
+thermo 200
+""")

@@ -39,83 +39,12 @@ D, RHO_P, CP_P, TM = 600e-6, 8020.0, 48.35, 1000.0
 M_P = RHO_P * np.pi * D**3 / 6
 E_LATENT = 0.248611
 L = E_LATENT / M_P
-RHO_G, CP_G, K_G, MU_G, T_G = 1.6115, 5210.928, 100.0, 2.1e-5, 1500.0
-RHO_M, MU_M = RHO_P, 6e-3
-LX, LY, LZ, H = 2.1e-3, 18.2e-3, 2.1e-3, 0.7e-3
 T_END = 8.5e-3
 
 
-def build(case, model, dem_dt=1e-6, fluid_dt=1e-5, particle_y=17.6e-3, extra_lammps=""):
-    n = (round(LX / H), round(LY / H), round(LZ / H))
-    cc.box_mesh(case, (0, 0, 0), (LX, LY, LZ), n,
-                {"inlet": ("patch", ["ymax"]), "outlet": ("patch", ["ymin"]),
-                 "walls": ("wall", ["xmin", "xmax", "zmin", "zmax"])})
-    cc.uniform_field(case, "alpha.metal", "[0 0 0 0 0 0 0]", 0.0,
-                     {"inlet": "type fixedValue; value uniform 0;",
-                      "outlet": "type zeroGradient;", "walls": "type zeroGradient;"})
-    cc.uniform_field(case, "T", "[0 0 0 1 0 0 0]", T_G,
-                     {"inlet": f"type fixedValue; value uniform {T_G};",
-                      "outlet": f"type inletOutlet; inletValue uniform {T_G}; value uniform {T_G};",
-                      "walls": "type zeroGradient;"})
-    cc.uniform_field(case, "U", "[0 1 -1 0 0 0 0]", (0.0, -2.0, 0.0),
-                     {"inlet": "type fixedValue; value uniform (0 -2 0);",
-                      "outlet": "type zeroGradient;", "walls": "type slip;"}, vector=True)
-    cc.uniform_field(case, "p_rgh", "[1 -1 -2 0 0 0 0]", 0.0,
-                     {"inlet": "type fixedFluxPressure; value uniform 0;",
-                      "outlet": "type fixedValue; value uniform 0;",
-                      "walls": "type fixedFluxPressure; value uniform 0;"})
-    fc.transport(case, RHO_M, MU_M / RHO_M, RHO_G, MU_G / RHO_G, 0.0)
-    fc.gravity(case)
-    fc.control_dict(case, "meltdemFoam", T_END, fluid_dt, 5e-4, max_co=0.5, max_alpha_co=0.5,
-                    max_dt=fluid_dt)
-    fc.fv_schemes(case)
-    fc.fv_solution(case, n_correctors=3, extra_solvers="")
-    # tight solves: the balances are only as exact as the linear systems
-    sol = os.path.join(case, "system", "fvSolution")
-    txt = open(sol).read()
-    txt = txt.replace("tolerance 1e-10; relTol 0;\n    }", "tolerance 1e-14; relTol 0;\n    }", 1)
-    txt = txt.replace("p_rgh { solver PCG; preconditioner DIC; tolerance 1e-9; relTol 0.01; }",
-                      "p_rgh { solver PCG; preconditioner DIC; tolerance 1e-14; relTol 0; }")
-    txt = txt.replace('"U.*" { solver smoothSolver; smoother symGaussSeidel; tolerance 1e-9; relTol 0; }',
-                      '"U.*" { solver smoothSolver; smoother symGaussSeidel; tolerance 1e-15; relTol 0; }')
-    txt = txt.replace('"T.*" { solver PBiCGStab; preconditioner DILU; tolerance 1e-10; relTol 0; }',
-                      '"T.*" { solver PBiCGStab; preconditioner DILU; tolerance 1e-15; relTol 0; }')
-    txt = txt.replace('relaxationFactors { equations { ".*" 1; } }', "")
-    open(sol, "w").write(txt)
-    fc.meltdem_properties(case, physics=dict(energy="on", surfaceTension="off", particles="on"), extra=f"""
-metal {{ cp {CP_P!r}; k 30; L {L!r}; Tsolidus {TM - 1!r}; Tliquidus {TM!r}; }}
-gas {{ cp {CP_G!r}; k {K_G!r}; }}
-energyControls {{ nCorrectors 50; tolerance 1e-13; }}
-particles
-{{
-    lammpsInput     in.particles;
-    distribution    {model};
-    demStepsPerFluidStep auto;
-}}
-""")
-    fc.run(["blockMesh"], case, "log.blockMesh")
-    margin = 1e-4
-    with open(os.path.join(case, "in.particles"), "w") as f:
-        f.write(f"""# thesis 2.3 particle, coupled
-units si
-atom_style sphere 1
-dimension 3
-boundary f f f
-region box block {-margin!r} {LX + margin!r} {-margin!r} {LY + margin!r} {-margin!r} {LZ + margin!r}
-create_box 1 box
-create_atoms 1 single {LX / 2!r} {particle_y!r} {LZ / 2!r}
-set atom 1 diameter {D!r} density {RHO_P!r}
-velocity all set 0 -2 0
-comm_modify cutoff {2 * D!r}
-neighbor 1e-5 bin
-timestep {dem_dt!r}
-fix integrate all nve/sphere
-fix melt all powder/melt cp {CP_P!r} Tmelt {TM!r} latent {L!r} temp 0
-{extra_lammps}
-thermo_style custom step time atoms f_melt[1] f_melt[2] f_melt[6]
-thermo_modify format float %.12g
-thermo 200
-""")
+def build(case, model, particle_y=17.6e-3, **kw):
+    cc.channel_case(case, model, dict(d=D, rho=RHO_P, cp=CP_P, Tm=TM, L=L, T0=0.0, y=particle_y),
+                    t_end=T_END, **kw)
 
 
 def main():
