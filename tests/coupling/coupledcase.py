@@ -165,8 +165,8 @@ timestep {dem_dt!r}
 {integrate}
 {gravity}
 fix melt all powder/melt cp {p["cp"]!r} Tmelt {p["Tm"]!r} latent {p["L"]!r} temp {p.get("T0", 0.0)!r}
-{extra_lammps}
 thermo_style custom step time atoms f_melt[1] f_melt[2] f_melt[6]
 thermo_modify format float %.12g
 thermo 200
+{extra_lammps}
 """)

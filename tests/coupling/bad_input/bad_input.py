@@ -1,0 +1,212 @@
+#!/usr/bin/env python3
+"""Bad input to the coupled solver (issue 5): a clear message before the first step.
+
+The thesis 2.3 case (tests/coupling/thesis_particle, build()) with a short end time runs
+cleanly; each variant breaks one thing (the LAMMPS input, the particles sub-dictionary, the
+metal data, the switches) and runs meltdemFoam serially under a time limit. A variant passes
+when the solver
+  - exits with a non-zero code that is not a signal or a trap (no segfault, no hang: a run past
+    the time limit fails),
+  - takes no time step (no 'Time = ' line in its output), and
+  - prints a message holding the expected fragments (an OpenFOAM FatalIOError naming the entry,
+    or LAMMPS's own ERROR line where LAMMPS rejects the input while reading it).
+The clean case must run its few steps to the end, so a variant cannot pass by breaking
+something else.
+usage: bad_input.py [--keep] [--only NAME ...]
+"""
+import importlib.util
+import os
+import re
+import subprocess
+import sys
+import tempfile
+
+src = os.environ["MELTDEM_SOURCE_DIR"]
+sys.path.insert(0, os.path.join(src, "tests", "support"))
+from meltdem_report import check_at_most, report  # noqa: E402
+import foamcase as fc  # noqa: E402
+
+_spec = importlib.util.spec_from_file_location(
+    "thesis_particle", os.path.join(src, "tests", "coupling", "thesis_particle", "thesis_particle.py"))
+tp = importlib.util.module_from_spec(_spec)
+_spec.loader.exec_module(tp)
+
+TEST = "coupling.bad_input"
+TIMEOUT = 90  # s per run; the clean case takes a few seconds
+MARGIN = 1e-4  # the LAMMPS box of build() extends the mesh by this on every side
+STEPS = 3  # fluid steps of the clean case
+
+
+def edit(case, rel, old, new, count=1):
+    """Replace old by new in a case file; the text must be there (the variant would otherwise
+    test nothing)."""
+    path = os.path.join(case, rel)
+    txt = open(path).read()
+    if isinstance(old, re.Pattern):
+        txt, n = old.subn(new, txt, count=count)
+    else:
+        n = txt.count(old)
+        txt = txt.replace(old, new, count)
+    assert n >= 1, f"{rel}: {old!r} not found"
+    open(path, "w").write(txt)
+
+
+LMP, PROPS = "in.particles", "constant/meltdemProperties"
+MELT_FIX = re.compile(r"^fix melt all powder/melt .*$", re.M)
+BOX = re.compile(r"^region box block .*$", re.M)
+PARTICLE = re.compile(r"^create_atoms 1 single .*$", re.M)
+FIX_LINE = (f"fix melt all powder/melt cp {tp.CP_P!r} Tmelt {tp.TM!r} latent {tp.L!r} temp 0")
+
+
+def drop_lines(case, rel, pattern):
+    edit(case, rel, re.compile(pattern, re.M), "", count=0)
+
+
+# name -> (what is broken, edit(case), fragments the message must hold)
+VARIANTS = {
+    "units_metal": (
+        "LAMMPS input in units metal",
+        lambda c: edit(c, LMP, "units si", "units metal"),
+        ["units si"]),
+    "units_lj": (
+        "LAMMPS input in units lj",
+        lambda c: edit(c, LMP, "units si", "units lj"),
+        ["units si"]),
+    "particle_outside_mesh": (
+        "particle centre above the mesh (inside the LAMMPS box)",
+        lambda c: edit(c, LMP, PARTICLE,
+                       f"create_atoms 1 single {tp.LX / 2!r} {tp.LY + MARGIN / 2!r} {tp.LZ / 2!r}"),
+        ["particle 1", "outside the mesh"]),
+    "box_smaller_than_mesh": (
+        "LAMMPS box 0.3 mm short of the mesh in x",
+        lambda c: edit(c, LMP, BOX,
+                       f"region box block {-MARGIN!r} {tp.LX - 3e-4!r} {-MARGIN!r} {tp.LY + MARGIN!r} "
+                       f"{-MARGIN!r} {tp.LZ + MARGIN!r}"),
+        ["mismatched domains", "LAMMPS box in x"]),
+    "periodic_box_not_mesh": (
+        "LAMMPS box periodic in x but wider than the mesh",
+        lambda c: edit(c, LMP, "boundary f f f", "boundary p f f"),
+        ["mismatched domains", "periodic"]),
+    "missing_lammpsInput": (
+        "no lammpsInput entry in particles",
+        lambda c: drop_lines(c, PROPS, r"^\s*lammpsInput .*\n"),
+        ["missing entry 'lammpsInput'"]),
+    "lammpsInput_not_found": (
+        "lammpsInput names a file that does not exist",
+        lambda c: edit(c, PROPS, "lammpsInput     in.particles;", "lammpsInput     in.nothere;"),
+        ["lammpsInput", "cannot open", "in.nothere"]),
+    "unknown_distribution": (
+        "distribution cells (unknown model)",
+        lambda c: edit(c, PROPS, re.compile(r"distribution\s+\w+;"), "distribution    cells;"),
+        ["distribution", "cells"]),
+    "demStepsPerFluidStep_zero": (
+        "demStepsPerFluidStep 0",
+        lambda c: edit(c, PROPS, "demStepsPerFluidStep auto;", "demStepsPerFluidStep 0;"),
+        ["demStepsPerFluidStep"]),
+    "no_melt_fix": (
+        "no fix powder/melt in the LAMMPS input",
+        lambda c: (edit(c, LMP, MELT_FIX, ""), drop_lines(c, LMP, r"^thermo_style .*\n")),
+        ["0 fix powder/melt", "exactly one"]),
+    "two_melt_fixes": (
+        "two fix powder/melt in the LAMMPS input",
+        lambda c: edit(c, LMP, MELT_FIX, FIX_LINE + "\n" + FIX_LINE.replace("fix melt ", "fix melt2 ")),
+        ["2 fix powder/melt", "exactly one"]),
+    "cp_mismatch": (
+        "metal cp 50 in meltdemProperties, fix powder/melt cp 48.35",
+        lambda c: edit(c, PROPS, f"cp {tp.CP_P!r};", "cp 50;"),
+        ["cp", "differs from fix melt"]),
+    "latent_mismatch": (
+        "metal L 2.7e5 in meltdemProperties, fix powder/melt latent 2.74e5",
+        lambda c: edit(c, PROPS, f"L {tp.L!r};", "L 2.7e5;"),
+        ["L", "differs from fix melt", "latent"]),
+    "Tmelt_outside_solidus_liquidus": (
+        "fix powder/melt Tmelt 1100 outside [Tsolidus 999, Tliquidus 1000]",
+        lambda c: edit(c, LMP, f"Tmelt {tp.TM!r}", "Tmelt 1100.0"),
+        ["Tmelt", "outside [Tsolidus, Tliquidus]"]),
+    "missing_metal_L": (
+        "metal L missing (material data)",
+        lambda c: edit(c, PROPS, f" L {tp.L!r};", ""),
+        ["missing entry 'L'"]),
+    "particles_without_flow": (
+        "physics particles on with flow off",
+        lambda c: edit(c, PROPS, "    flow on;", "    flow off;"),
+        ["'particles'", "'flow on'"]),
+    "missing_particles_dict": (
+        "physics particles on without the particles sub-dictionary",
+        lambda c: edit(c, PROPS, re.compile(r"^particles\s*\{[^}]*\}\n", re.M), ""),
+        ["sub-dictionary 'particles'"]),
+    "lammps_syntax_error": (
+        "an unknown command in the LAMMPS input",
+        lambda c: edit(c, LMP, "neighbor 1e-5 bin", "neighbour 1e-5 bin"),
+        ["ERROR", "neighbour"]),
+}
+
+
+def build(case):
+    tp.build(case, "centre")
+    end = STEPS * 1e-5
+    edit(case, "system/controlDict", re.compile(r"^endTime .*;$", re.M), f"endTime {end!r};")
+
+
+def run(case):
+    env = dict(os.environ)
+    env.setdefault("WM_PROJECT_DIR", "/usr/share/openfoam")
+    try:
+        r = subprocess.run([fc.solver()], cwd=case, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                           env=env, timeout=TIMEOUT)
+        rc, out = r.returncode, r.stdout.decode(errors="replace")
+    except subprocess.TimeoutExpired as e:
+        rc, out = None, (e.stdout or b"").decode(errors="replace") + f"\n[killed after {TIMEOUT} s]\n"
+    with open(os.path.join(case, "log.meltdemFoam"), "w") as f:
+        f.write(out)
+    return rc, out
+
+
+def steps_taken(out):
+    return len(re.findall(r"^Time = ", out, re.M))
+
+
+def message(out):
+    """The error text: OpenFOAM's fatal block, or LAMMPS's ERROR line(s)."""
+    i = out.find("FOAM FATAL")
+    if i >= 0:
+        return out[i:]
+    return "\n".join(l for l in out.splitlines() if "ERROR" in l)
+
+
+def main():
+    keep = "--keep" in sys.argv
+    only = sys.argv[sys.argv.index("--only") + 1:] if "--only" in sys.argv else None
+    work = tempfile.mkdtemp(prefix="meltdem-coupling-bad-input-")
+    ok = True
+
+    clean = os.path.join(work, "clean")
+    build(clean)
+    rc, out = run(clean)
+    n = steps_taken(out)
+    ok &= report(TEST, f"clean case runs its {STEPS} steps to the end (exit code, steps)", f"rc {rc}, {n} steps",
+                 f"rc 0, {STEPS} steps", "exact", rc == 0 and n == STEPS and "\nEnd" in out)
+
+    for name, (what, breakit, words) in VARIANTS.items():
+        if only and name not in only:
+            continue
+        case = os.path.join(work, name)
+        build(case)
+        breakit(case)
+        rc, out = run(case)
+        text = message(out)
+        signal = (rc is None or rc < 0 or rc >= 128
+                  or re.search(r"Foam::sigSegv|Foam::sigFpe|printStack|Segmentation fault", out))
+        named = bool(text) and all(w in text for w in words)
+        first = " ".join(l.strip() for l in text.splitlines()[:6] if l.strip())[:200] if text else out[-200:]
+        print(f"{name}: rc {rc}; {first!r}")
+        ok &= report(TEST, f"{what}: stops with a message holding {words}",
+                     f"rc {rc}, {'signal/timeout' if signal else 'exit'}, "
+                     f"{'names it' if named else 'does not name it'}",
+                     "non-zero exit naming the problem", "exact", rc not in (0, None) and not signal and named)
+        ok &= check_at_most(TEST, f"{what}: fluid steps taken before the message", steps_taken(out), 0)
+    return fc.finish(ok, work, keep)
+
+
+if __name__ == "__main__":
+    sys.exit(main())

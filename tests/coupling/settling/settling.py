@@ -1,0 +1,86 @@
+#!/usr/bin/env python3
+"""A particle settling in quiescent gas through the coupled solver vs the standalone 'ambient'
+mode of fix powder/melt (issue 5): the same terminal velocity within 2 %.
+
+Box 4 x 4 x 4 mm of 0.5 mm cells, air at rest (rho 1.2, mu 1.8e-5, 300 K), gravity -9.81 in y
+in both codes. A steel grain d = 10 um (rho 7800, response time tau = rho d^2 / (18 mu) =
+2.4 ms) falls from rest for 15 ms (6 tau); the terminal velocity is its mean vy over the last
+2 ms. Coupled, the grain feels the local gas (which its drag pushes down a little: the
+Stokeslet at one cell's distance is ~1 % of v_t); standalone, a uniform gas at rest. The Stokes
+value rho_p g d^2 / (18 mu) (buoyancy 1.5e-4 of it) is printed as a third reference.
+"""
+import os
+import re
+import subprocess
+import sys
+import tempfile
+
+import numpy as np
+
+sys.path.insert(0, os.path.join(os.environ["MELTDEM_SOURCE_DIR"], "tests", "support"))
+sys.path.insert(0, os.path.join(os.environ["MELTDEM_SOURCE_DIR"], "tests", "coupling"))
+from meltdem_report import check_relative  # noqa: E402
+import coupledcase as cc  # noqa: E402
+import foamcase as fc  # noqa: E402
+
+TEST = "coupling.settling"
+D, RHO_P, RHO_G, MU_G, G = 10e-6, 7800.0, 1.2, 1.8e-5, 9.81
+T_END, AVERAGE = 15e-3, 2e-3
+PARTICLE = dict(d=D, rho=RHO_P, cp=500.0, Tm=5000.0, L=2.7e5, T0=300.0, y=3e-3, v=(0.0, 0.0, 0.0))
+VY = """compute vy all property/atom vy
+compute vys all reduce sum c_vy
+thermo_style custom step time atoms c_vys
+thermo_modify format float %.12g
+thermo 10
+"""
+
+
+def thermo(log):
+    """(time, vy) rows of a LAMMPS log with the thermo_style above."""
+    rows = []
+    for line in open(log):
+        w = line.split()
+        if len(w) == 4 and re.fullmatch(r"\d+", w[0]):
+            try:
+                rows.append((float(w[1]), float(w[3])))
+            except ValueError:
+                pass
+    return np.array(sorted(set(rows)))
+
+
+def terminal(rows):
+    last = rows[rows[:, 0] >= rows[-1, 0] - AVERAGE]
+    return -np.mean(last[:, 1])
+
+
+def main():
+    keep = "--keep" in sys.argv
+    work = tempfile.mkdtemp(prefix="meltdem-settling-")
+    case = os.path.join(work, "case")
+    cc.channel_case(case, "neighbours", PARTICLE,
+                    channel=dict(lx=4e-3, ly=4e-3, lz=4e-3, h=0.5e-3, u=0.0),
+                    gas=dict(rho=RHO_G, mu=MU_G, cp=1005.0, k=0.026, T=300.0),
+                    t_end=T_END, fluid_dt=2e-4, dem_dt=1e-5, g=(0.0, -G, 0.0), extra_lammps=VY)
+    cc.run_solver(case)
+    coupled = terminal(thermo(os.path.join(case, "log.lammps")))
+
+    # the same LAMMPS input standalone, with the uniform gas at rest ('ambient')
+    alone = os.path.join(work, "alone")
+    os.makedirs(alone)
+    text = open(os.path.join(case, "in.particles")).read()
+    text = re.sub(r"(fix melt all powder/melt .*)", r"\1 ambient 300 0.026 %r %r 1005 0 0 0" % (RHO_G, MU_G), text)
+    text = text.replace("thermo 10", f"thermo 10\nrun {round(T_END / 1e-5)}")
+    open(os.path.join(alone, "in.alone"), "w").write(text)
+    subprocess.run([os.path.join(os.environ["MELTDEM_BIN"], "meltdem-lmp"), "-in", "in.alone", "-log", "log.lammps",
+                    "-screen", "none"], cwd=alone, check=True)
+    standalone = terminal(thermo(os.path.join(alone, "log.lammps")))
+    stokes = (RHO_P - RHO_G) * G * D * D / (18 * MU_G)
+    print(f"{TEST}: terminal velocity coupled {coupled:.6g} m/s, standalone ambient {standalone:.6g} m/s, "
+          f"Stokes {stokes:.6g} m/s")
+    ok = check_relative(TEST, "terminal velocity, coupled vs standalone ambient [m/s]", coupled, standalone, 0.02)
+    ok &= check_relative(TEST, "terminal velocity, standalone vs Stokes [m/s]", standalone, stokes, 0.02)
+    return fc.finish(ok, work, keep)
+
+
+if __name__ == "__main__":
+    sys.exit(main())
