@@ -30,6 +30,10 @@ _spec = importlib.util.spec_from_file_location(
     "thesis_particle", os.path.join(src, "tests", "coupling", "thesis_particle", "thesis_particle.py"))
 tp = importlib.util.module_from_spec(_spec)
 _spec.loader.exec_module(tp)
+sys.path.insert(0, os.path.join(src, "tests", "coupling"))
+import coupledcase as cc  # noqa: E402
+
+LX, LY, LZ = cc.CHANNEL["lx"], cc.CHANNEL["ly"], cc.CHANNEL["lz"]
 
 TEST = "coupling.bad_input"
 TIMEOUT = 90  # s per run; the clean case takes a few seconds
@@ -55,7 +59,7 @@ LMP, PROPS = "in.particles", "constant/meltdemProperties"
 MELT_FIX = re.compile(r"^fix melt all powder/melt .*$", re.M)
 BOX = re.compile(r"^region box block .*$", re.M)
 PARTICLE = re.compile(r"^create_atoms 1 single .*$", re.M)
-FIX_LINE = (f"fix melt all powder/melt cp {tp.CP_P!r} Tmelt {tp.TM!r} latent {tp.L!r} temp 0")
+FIX_LINE = f"fix melt all powder/melt cp {tp.CP_P!r} Tmelt {tp.TM!r} latent {tp.L!r} temp 0.0"
 
 
 def drop_lines(case, rel, pattern):
@@ -75,13 +79,13 @@ VARIANTS = {
     "particle_outside_mesh": (
         "particle centre above the mesh (inside the LAMMPS box)",
         lambda c: edit(c, LMP, PARTICLE,
-                       f"create_atoms 1 single {tp.LX / 2!r} {tp.LY + MARGIN / 2!r} {tp.LZ / 2!r}"),
+                       f"create_atoms 1 single {LX / 2!r} {LY + MARGIN / 2!r} {LZ / 2!r}"),
         ["particle 1", "outside the mesh"]),
     "box_smaller_than_mesh": (
         "LAMMPS box 0.3 mm short of the mesh in x",
         lambda c: edit(c, LMP, BOX,
-                       f"region box block {-MARGIN!r} {tp.LX - 3e-4!r} {-MARGIN!r} {tp.LY + MARGIN!r} "
-                       f"{-MARGIN!r} {tp.LZ + MARGIN!r}"),
+                       f"region box block {-MARGIN!r} {LX - 3e-4!r} {-MARGIN!r} {LY + MARGIN!r} "
+                       f"{-MARGIN!r} {LZ + MARGIN!r}"),
         ["mismatched domains", "LAMMPS box in x"]),
     "periodic_box_not_mesh": (
         "LAMMPS box periodic in x but wider than the mesh",
@@ -114,11 +118,11 @@ VARIANTS = {
     "cp_mismatch": (
         "metal cp 50 in meltdemProperties, fix powder/melt cp 48.35",
         lambda c: edit(c, PROPS, f"cp {tp.CP_P!r};", "cp 50;"),
-        ["cp", "differs from fix melt"]),
+        ["cp 50 differs from fix \"melt\" powder/melt cp"]),
     "latent_mismatch": (
         "metal L 2.7e5 in meltdemProperties, fix powder/melt latent 2.74e5",
         lambda c: edit(c, PROPS, f"L {tp.L!r};", "L 2.7e5;"),
-        ["L", "differs from fix melt", "latent"]),
+        ["L 270000 differs from fix \"melt\" powder/melt latent"]),
     "Tmelt_outside_solidus_liquidus": (
         "fix powder/melt Tmelt 1100 outside [Tsolidus 999, Tliquidus 1000]",
         lambda c: edit(c, LMP, f"Tmelt {tp.TM!r}", "Tmelt 1100.0"),
