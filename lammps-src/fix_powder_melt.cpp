@@ -18,7 +18,9 @@
 #include "update.h"
 #include "utils.h"
 
+#include "meltdem/coupling/hertz_restitution.h"
 #include "meltdem/coupling/particle_forces.h"
+#include "meltdem/coupling/solid_metal_contact.h"
 
 #include <algorithm>
 #include <cmath>
@@ -33,7 +35,7 @@ namespace mc = meltdem::coupling;
 
 FixPowderMelt::FixPowderMelt(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), drag_model(mc::DragModel::Thesis), T0(0.0), ambient_flag(0),
-    provider(nullptr), in_setup(0), melt(nullptr), exchange(nullptr), nmax_exchange(0), vector_dirty(1),
+    provider(nullptr), in_setup(0), solid_flag(0), solid_estar(0.0), solid_alpha(0.0), melt(nullptr), exchange(nullptr), nmax_exchange(0), vector_dirty(1),
     warned_drag(0)
 {
   if (strcmp(update->unit_style, "si") != 0)
@@ -104,6 +106,17 @@ FixPowderMelt::FixPowderMelt(LAMMPS *lmp, int narg, char **arg) :
       if (!(amb.cp > 0.0)) error->all(FLERR, "Fix powder/melt ambient heat capacity CPF must be > 0");
       ambient_flag = 1;
       iarg += 9;
+    } else if (strcmp(arg[iarg], "solid_metal") == 0) {
+      value("solid_metal", 2);
+      solid_estar = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+      const double e = utils::numeric(FLERR, arg[iarg + 2], false, lmp);
+      if (!(solid_estar > 0.0))
+        error->all(FLERR, "Fix powder/melt solid_metal: effective modulus E* must be > 0 Pa");
+      if (!(e > 0.0) || e > 1.0)
+        error->all(FLERR, "Fix powder/melt solid_metal: restitution must be in (0, 1], not {}", e);
+      solid_alpha = mc::alpha_for_restitution(e);
+      solid_flag = 1;
+      iarg += 3;
     } else if (strcmp(arg[iarg], "drag") == 0) {
       value("drag", 1);
       if (strcmp(arg[iarg + 1], "thesis") == 0)
@@ -320,6 +333,13 @@ void FixPowderMelt::post_force(int /*vflag*/)
       F = mc::drag_and_buoyancy(drag_model, fluid, v[i], 2.0 * radius[i], g);
     } catch (std::invalid_argument &e) {
       error->one(FLERR, "Fix powder/melt: atom {}: {}", atom->tag[i], e.what());
+    }
+    if (solid_flag && fluid.solid.present) {
+      // the continuum's solid metal repels the particle as a granular wall
+      const Eigen::Vector3d Fs = mc::solid_contact_force(
+          fluid.solid, Eigen::Vector3d(x[i][0], x[i][1], x[i][2]), radius[i], rmass[i],
+          Eigen::Vector3d(v[i][0], v[i][1], v[i][2]), solid_estar, solid_alpha);
+      for (int k = 0; k < 3; k++) f[i][k] += Fs[k];
     }
     for (int k = 0; k < 3; k++) {
       f[i][k] += F.drag[k] + F.buoyancy[k];

@@ -83,6 +83,7 @@ class FixPowderMelt : public Fix {
   // particles that left the continuum's mesh; collective; returns the global count
   bigint remove_particles(const std::vector<tagint> &tags);
   const meltdem::coupling::MeltMaterial &material() const { return mat; }
+  bool solid_metal_wall() const { return solid_flag != 0; }
 
  private:
   // per-atom columns; dumps see TEMP and FRAC. MOLTEN = 1: fully molten, booked, removed
@@ -98,6 +99,8 @@ class FixPowderMelt : public Fix {
   std::unique_ptr<meltdem::coupling::UniformFluid> ambient;
   const meltdem::coupling::FluidStateProvider *provider;
   int in_setup;
+  int solid_flag;           // solid_metal keyword: the continuum's solid metal is a wall
+  double solid_estar, solid_alpha;
 
   double **melt;           // per-atom state, columns above
   StepExchange *exchange;  // per-atom exchange of the last step

@@ -19,6 +19,7 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <string>
 
 namespace mc = meltdem::coupling;
 using namespace LAMMPS_NS;
@@ -43,6 +44,43 @@ class TagFluidProvider : public mc::FluidStateProvider {
  private:
   LAMMPS *lmp_;
 };
+
+// LAMMPS's screen once the input is read: the per-run output (setup, thermo) goes to the log
+// only, but ERROR and WARNING lines (and the 'Last command' after an error) still reach stdout,
+// on every rank: after a LAMMPS error inside the coupled run nothing else says why the job
+// stopped. LAMMPS closes the stream itself (error exit or destructor).
+ssize_t screen_write(void *cookie, const char *buf, size_t n)
+{
+  auto &line = *static_cast<std::string *>(cookie);
+  for (size_t i = 0; i < n; ++i) {
+    line += buf[i];
+    if (buf[i] != '\n') continue;
+    if (line.rfind("ERROR", 0) == 0 || line.rfind("WARNING", 0) == 0 || line.rfind("Last command", 0) == 0) {
+      std::fputs(line.c_str(), stdout);
+      std::fflush(stdout);
+    }
+    line.clear();
+  }
+  return ssize_t(n);
+}
+
+int screen_close(void *cookie)
+{
+  delete static_cast<std::string *>(cookie);
+  return 0;
+}
+
+FILE *errors_only_screen()
+{
+  auto *line = new std::string;
+  FILE *f = fopencookie(line, "w", cookie_io_functions_t{nullptr, screen_write, nullptr, screen_close});
+  if (!f) {
+    delete line;
+    return nullptr;
+  }
+  std::setvbuf(f, nullptr, _IONBF, 0);
+  return f;
+}
 
 }  // namespace
 
@@ -97,7 +135,7 @@ LammpsCouplingHost::LammpsCouplingHost(MPI_Comm comm, const std::string &input_f
   impl_->melt->set_fluid_provider(impl_->provider.get());
   // initialise every style once (fix gravity sets its vector only in init)
   if (impl_->me == 0 && lmp->screen) fflush(lmp->screen);
-  lmp->screen = nullptr;
+  lmp->screen = errors_only_screen();
   lmp->input->one("run 0 post no");
 }
 
@@ -141,6 +179,8 @@ double LammpsCouplingHost::gravity(double g[3]) const
 const mc::MeltMaterial &LammpsCouplingHost::material() const { return impl_->melt->material(); }
 
 std::string LammpsCouplingHost::melt_fix_id() const { return impl_->melt->id; }
+
+bool LammpsCouplingHost::solid_metal_wall() const { return impl_->melt->solid_metal_wall(); }
 
 void LammpsCouplingHost::local_particles(std::vector<mc::ExchangeRecord> &out) const
 {

@@ -47,6 +47,9 @@ class LammpsCouplingHost {
   double gravity(double g[3]) const;  // sum of fix gravity vectors; returns |g|
   const coupling::MeltMaterial &material() const;
   std::string melt_fix_id() const;
+  // whether fix powder/melt has the solid_metal keyword (the coupling then finds the
+  // solid-metal surface near each particle)
+  bool solid_metal_wall() const;
 
   // the particles of the melt group on this rank now (state only; exchange fields zero
   // unless an interval is open)

@@ -246,3 +246,55 @@ void ParallelExchange::local_weights(std::int64_t g, std::vector<CellWeight> &ou
 }
 
 }  // namespace meltdem::coupling
+
+namespace meltdem::coupling {
+
+void ParallelExchange::nearest_solid(const double *solid_fraction, double reach, std::vector<SolidSurface> &out) const
+{
+  const std::size_t n = all_.size();
+  std::vector<SolidSurface> local(n);
+  struct DistRank {
+    double d;
+    int rank;
+  };
+  std::vector<DistRank> best(n, DistRank{std::numeric_limits<double>::infinity(), rank_});
+  std::vector<long> cells;
+  std::vector<Eigen::Vector3d> lo, hi;
+  for (std::size_t g = 0; g < n; ++g) {
+    cells.clear();
+    mesh_.cells_in_sphere(all_[g].x, all_[g].radius + reach, cells);
+    lo.clear();
+    hi.clear();
+    for (long c : cells) {
+      if (!(solid_fraction[c] >= 0.5)) continue;
+      Eigen::Vector3d l, h;
+      mesh_.cell_bounds(c, l, h);
+      lo.push_back(l);
+      hi.push_back(h);
+    }
+    local[g] = nearest_solid_surface(all_[g].x, lo, hi);
+    if (local[g].present) best[g].d = local[g].distance;
+  }
+  // the rank with the nearest surface provides it (lowest rank on ties)
+  if (n) MPI_Allreduce(MPI_IN_PLACE, best.data(), int(n), MPI_DOUBLE_INT, MPI_MINLOC, comm_);
+  constexpr int kPack = 8;  // present, distance, point, normal
+  std::vector<double> pack(kPack * n, 0.0);
+  for (std::size_t g = 0; g < n; ++g)
+    if (local[g].present && best[g].rank == rank_) {
+      double *q = &pack[kPack * g];
+      q[0] = 1.0, q[1] = local[g].distance;
+      for (int a = 0; a < 3; ++a) q[2 + a] = local[g].point[a], q[5 + a] = local[g].normal[a];
+    }
+  if (n) MPI_Allreduce(MPI_IN_PLACE, pack.data(), int(kPack * n), MPI_DOUBLE, MPI_SUM, comm_);
+  out.assign(n, SolidSurface());
+  for (std::size_t g = 0; g < n; ++g) {
+    const double *q = &pack[kPack * g];
+    if (q[0] == 0.0) continue;
+    out[g].present = true;
+    out[g].distance = q[1];
+    out[g].point = Eigen::Vector3d(q[2], q[3], q[4]);
+    out[g].normal = Eigen::Vector3d(q[5], q[6], q[7]);
+  }
+}
+
+}  // namespace meltdem::coupling

@@ -186,7 +186,13 @@ void Foam::meltdem::particleCoupling::checkMaterial(const dictionary& meltdemDic
     const mc::MeltMaterial& p = lammps_->material();
     const bool energy =
         meltdemDict.subDict("physics").getOrDefault<bool>("energy", false);
-    if (!energy) return;
+    if (!energy)
+    {
+        // without it the continuum has no T, k, cp for the particles' heating (eq. 2.13)
+        // and nothing to receive the melt's enthalpy (eq. 2.9)
+        FatalIOErrorInFunction(meltdemDict.subDict("physics"))
+            << "switch 'particles' needs 'energy on'" << exit(FatalIOError);
+    }
     const dictionary& md = meltdemDict.subDict("metal");
     const scalar cp = md.get<scalar>("cp"), L = md.get<scalar>("L");
     const scalar Ts = md.get<scalar>("Tsolidus"), Tl = md.get<scalar>("Tliquidus");
@@ -286,10 +292,29 @@ void Foam::meltdem::particleCoupling::advance(Time& runTime, const fluidFields& 
     };
     std::vector<mc::SampledFluid> sampled;
     exchange_->sample_global(cells, sampled);
+    // solid metal near each particle (cells whose metal is mostly solid): a wall for it
+    std::vector<mc::SolidSurface> solid;
+    if (lammps_->solid_metal_wall())
+    {
+        const scalarField solidFraction
+        (
+            f.alphaMetal.primitiveField()*(1 - f.liquidFraction.primitiveField())
+        );
+        // reach: what a particle can travel in this step plus a cell
+        scalar vmax = 0;
+        for (const auto& r : start) vmax = max(vmax, scalar(r.v.norm()));
+        reduce(vmax, maxOp<scalar>());
+        const scalar reach =
+            vmax*runTime.deltaTValue() + Foam::cbrt(gMax(mesh_.V().field()));
+        exchange_->nearest_solid(solidFraction.cdata(), reach, solid);
+    }
     std::unordered_map<std::int64_t, mc::FluidState> fluid;
     for (std::int64_t g = 0; g < exchange_->global_particles(); ++g)
     {
-        if (exchange_->global_inside(g)) fluid[exchange_->global_id(g)] = sampled[g].fluid;
+        if (!exchange_->global_inside(g)) continue;
+        mc::FluidState& fs = fluid[exchange_->global_id(g)];
+        fs = sampled[g].fluid;
+        if (!solid.empty()) fs.solid = solid[g];
     }
     lammps_->set_fluid(std::move(fluid));
 

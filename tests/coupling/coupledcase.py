@@ -41,8 +41,11 @@ boundary
 
 
 def uniform_field(case, name, dims, value, boundary, vector=False):
-    """A field with a uniform internal value (no frontAndBack: the mesh is 3D)."""
-    if vector:
+    """A field with a uniform internal value, or per cell for a numpy array (no frontAndBack:
+    the mesh is 3D)."""
+    if isinstance(value, np.ndarray):
+        internal = fc._internal(value, vector)
+    elif vector:
         internal = f"uniform ({value[0]!r} {value[1]!r} {value[2]!r})"
     else:
         internal = f"uniform {value!r}"
@@ -85,8 +88,16 @@ GAS = dict(rho=1.6115, cp=5210.928, k=100.0, mu=2.1e-5, T=1500.0)
 CHANNEL = dict(lx=2.1e-3, ly=18.2e-3, lz=2.1e-3, h=0.7e-3, u=-2.0)
 
 
+def cell_centres_y(n, lo, hi):
+    """y of the cell centres of a one-block mesh in blockMesh order (x fastest, then y, z)."""
+    h = (hi[1] - lo[1]) / n[1]
+    yc = lo[1] + (np.arange(n[1]) + 0.5) * h
+    return np.broadcast_to(yc[None, :, None], (n[2], n[1], n[0])).ravel()
+
+
 def channel_case(case, model, particle, channel=None, gas=None, t_end=8.5e-3, fluid_dt=1e-5,
-                 dem_dt=1e-6, max_co=0.5, metal_k=30.0, extra_lammps="", g=(0.0, 0.0, 0.0)):
+                 dem_dt=1e-6, max_co=0.5, metal_k=30.0, extra_lammps="", g=(0.0, 0.0, 0.0),
+                 floor=None, melt_keywords=""):
     """A box channel along y (inlet ymax with U = (0, u, 0), outlet ymin, slip walls), gas at
     rest or flowing, one particle from LAMMPS. particle: dict d, rho, cp, Tm, L, T0, x, y, z,
     v (velocity vector) and held (no time integration: the particle stays where it is).
@@ -100,10 +111,16 @@ def channel_case(case, model, particle, channel=None, gas=None, t_end=8.5e-3, fl
     box_mesh(case, (0, 0, 0), (ch["lx"], ch["ly"], ch["lz"]), n,
              {"inlet": ("patch", ["ymax"]), "outlet": ("patch", ["ymin"]),
               "walls": ("wall", ["xmin", "xmax", "zmin", "zmax"])})
-    uniform_field(case, "alpha.metal", "[0 0 0 0 0 0 0]", 0.0,
+    # optional metal floor: floor = (top y, temperature) of a metal layer at the outlet end
+    alpha0, T0 = 0.0, T
+    if floor:
+        y = cell_centres_y(n, (0, 0, 0), (ch["lx"], ch["ly"], ch["lz"]))
+        alpha0 = np.where(y < floor[0], 1.0, 0.0)
+        T0 = np.where(y < floor[0], floor[1], T)
+    uniform_field(case, "alpha.metal", "[0 0 0 0 0 0 0]", alpha0,
                   {"inlet": "type fixedValue; value uniform 0;",
                    "outlet": "type zeroGradient;", "walls": "type zeroGradient;"})
-    uniform_field(case, "T", "[0 0 0 1 0 0 0]", T,
+    uniform_field(case, "T", "[0 0 0 1 0 0 0]", T0,
                   {"inlet": f"type fixedValue; value uniform {T!r};",
                    "outlet": f"type inletOutlet; inletValue uniform {T!r}; value uniform {T!r};",
                    "walls": "type zeroGradient;"})
@@ -164,7 +181,7 @@ neighbor 1e-5 bin
 timestep {dem_dt!r}
 {integrate}
 {gravity}
-fix melt all powder/melt cp {p["cp"]!r} Tmelt {p["Tm"]!r} latent {p["L"]!r} temp {p.get("T0", 0.0)!r}
+fix melt all powder/melt cp {p["cp"]!r} Tmelt {p["Tm"]!r} latent {p["L"]!r} temp {p.get("T0", 0.0)!r} {melt_keywords}
 thermo_style custom step time atoms f_melt[1] f_melt[2] f_melt[6]
 thermo_modify format float %.12g
 thermo 200

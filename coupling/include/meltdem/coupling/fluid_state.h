@@ -3,6 +3,8 @@
 // uniform 'ambient'). The physics asks a provider once per particle and step, so the
 // coupling can hand in interpolated local fields without touching the physics.
 
+#include "meltdem/coupling/solid_metal_contact.h"
+
 namespace meltdem::coupling {
 
 struct FluidState {
@@ -12,6 +14,7 @@ struct FluidState {
   double mu = 0.0;              // dynamic viscosity [Pa s]
   double cp = 0.0;              // specific heat capacity [J/(kg K)]
   double U[3] = {0.0, 0.0, 0.0};  // velocity [m/s]
+  SolidSurface solid;             // nearest solid metal of the continuum (if any)
 };
 
 class FluidStateProvider {

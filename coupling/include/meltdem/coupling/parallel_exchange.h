@@ -21,6 +21,7 @@
 #include "meltdem/coupling/exchange_record.h"
 #include "meltdem/coupling/fluid_sampling.h"
 #include "meltdem/coupling/particle_distribution.h"
+#include "meltdem/coupling/solid_metal_contact.h"
 
 #include <mpi.h>
 
@@ -61,6 +62,11 @@ class ParallelExchange {
   // names them): a particle that moves to another DEM rank during the interval still
   // finds its fluid there.
   void sample_global(const CellFluidFields &fields, std::vector<SampledFluid> &global_out) const;
+  // Collective. For every particle of every rank, the nearest surface of the cells whose
+  // solid_fraction (metal that is solid, per cell) is >= 1/2, searched within the
+  // particle's radius + reach of its centre (solid_metal_contact.h).
+  void nearest_solid(const double *solid_fraction, double reach, std::vector<SolidSurface> &global_out) const;
+
   std::int64_t global_id(std::int64_t g) const { return all_[std::size_t(g)].id; }
   bool global_inside(std::int64_t g) const { return inside_[std::size_t(g)] != 0; }
 

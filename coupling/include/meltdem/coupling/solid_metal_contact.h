@@ -1,0 +1,35 @@
+#pragma once
+// Particles meeting solid metal of the continuum (substrate, solidified track): the solid
+// repels them as a granular wall (issue 5 item 3). The coupling finds, once per coupling
+// interval, the surface of the solid metal nearest to each particle from the cells that
+// are solid (metal fraction x (1 - liquid fraction) >= 1/2) and hands it to the particle
+// as a plane (point, outward normal). The DEM side then applies, every sub-step, the same
+// Hertz contact with Tsuji delta^(1/4) damping as pair granular/powder and
+// wall/gran/powder (thesis eq. 3.5):
+//   F = (4/3 E* sqrt(R delta) delta - alpha sqrt(m 4/3 E* sqrt(R delta)) v.n) n,
+// delta = R - (x - p).n; no friction (the surface is a cell-face staircase, not a wall
+// with a tangential reference).
+#include <Eigen/Core>
+
+#include <vector>
+
+namespace meltdem::coupling {
+
+struct SolidSurface {
+  bool present = false;
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();   // on the surface
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();  // unit, out of the solid
+  double distance = 0.0;                             // from the particle centre
+};
+
+// The surface nearest to centre c among the solid boxes [lo_i, hi_i]: the closest point of
+// each box; the normal points from it to c (for c inside a box: out of its nearest face).
+SolidSurface nearest_solid_surface(const Eigen::Vector3d &c, const std::vector<Eigen::Vector3d> &lo,
+                                   const std::vector<Eigen::Vector3d> &hi);
+
+// Hertz/Tsuji normal force on a sphere (radius R, mass m, velocity v, centre x) from the
+// plane; zero without overlap. E_star = effective modulus, alpha = Tsuji damping.
+Eigen::Vector3d solid_contact_force(const SolidSurface &s, const Eigen::Vector3d &x, double R, double m,
+                                    const Eigen::Vector3d &v, double E_star, double alpha);
+
+}  // namespace meltdem::coupling
