@@ -9,7 +9,8 @@ when the solver
     the time limit fails),
   - takes no time step (no 'Time = ' line in its output), and
   - prints a message holding the expected fragments (an OpenFOAM FatalIOError naming the entry,
-    or LAMMPS's own ERROR line where LAMMPS rejects the input while reading it).
+    or LAMMPS's own ERROR line where LAMMPS rejects the input while reading it or stops inside
+    its sub-cycles: meltdemFoam passes LAMMPS's ERROR and WARNING lines to its output).
 The clean case must run its few steps to the end, so a variant cannot pass by breaking
 something else.
 usage: bad_input.py [--keep] [--only NAME ...]
@@ -139,6 +140,15 @@ VARIANTS = {
         "physics particles on without the particles sub-dictionary",
         lambda c: edit(c, PROPS, re.compile(r"^particles\s*\{[^}]*\}\n", re.M), ""),
         ["sub-dictionary 'particles'"]),
+    "particles_without_energy": (
+        "physics particles on with energy off",
+        lambda c: edit(c, PROPS, "    energy on;", "    energy off;"),
+        ["'particles'", "'energy on'"]),
+    "lammps_error_in_run": (
+        "a LAMMPS error inside the first DEM sub-cycles (fix print of 1/(step-3))",
+        lambda c: edit(c, LMP, "thermo 200", 'thermo 200\nvariable bad equal 1/(step-3)\n'
+                       'fix pr all print 3 "${bad}"'),
+        ["ERROR on proc 0", "Divide by 0", "Last command: run"]),
     "lammps_syntax_error": (
         "an unknown command in the LAMMPS input",
         lambda c: edit(c, LMP, "neighbor 1e-5 bin", "neighbour 1e-5 bin"),
@@ -175,7 +185,7 @@ def message(out):
     i = out.find("FOAM FATAL")
     if i >= 0:
         return out[i:]
-    return "\n".join(l for l in out.splitlines() if "ERROR" in l)
+    return "\n".join(l for l in out.splitlines() if "ERROR" in l or l.startswith("Last command"))
 
 
 def main():
