@@ -31,6 +31,34 @@ Foam::word requiredWord(const Foam::dictionary& d, const Foam::word& key)
     return d.get<Foam::word>(key);
 }
 
+// Particles (buoyancy, eq. 2.14, and fix gravity) and the continuum (hydrostatics) must feel
+// the same gravity: the impulse the particles take from the fluid is the fluid's to lose.
+void checkGravity
+(
+    const Foam::fvMesh& mesh,
+    const ::meltdem::LammpsCouplingHost& lammps,
+    const Foam::dictionary& dict
+)
+{
+    using namespace Foam;
+    double gl[3];
+    lammps.gravity(gl);
+    const vector gLammps(gl[0], gl[1], gl[2]);
+    // meltdemFoam registers g on Time (meshObjects::gravity)
+    vector gFoam(Zero);
+    if (mesh.time().foundObject<uniformDimensionedVectorField>("g"))
+    {
+        gFoam = mesh.time().lookupObject<uniformDimensionedVectorField>("g").value();
+    }
+    if (mag(gLammps - gFoam) > 1e-9*max(mag(gLammps), mag(gFoam)))
+    {
+        FatalIOErrorInFunction(dict)
+            << "mismatched gravity: the fix gravity of " << dict.get<word>("lammpsInput")
+            << " gives " << gLammps << " m/s2, constant/g is " << gFoam
+            << ": particles and continuum must feel the same gravity" << exit(FatalIOError);
+    }
+}
+
 } // End anonymous namespace
 
 
@@ -148,6 +176,7 @@ Foam::meltdem::particleCoupling::particleCoupling
 
     checkMaterial(meltdemDict);
     checkDomains();
+    checkGravity(mesh, *lammps_, dict_);
 
     exchange_.reset(new mc::ParallelExchange(distMesh_, model_, comm_));
     ledger_.reset(new mc::ConservationLedger(comm_));

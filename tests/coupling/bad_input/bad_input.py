@@ -92,6 +92,10 @@ VARIANTS = {
         "LAMMPS box periodic in x but wider than the mesh",
         lambda c: edit(c, LMP, "boundary f f f", "boundary p f f"),
         ["mismatched domains", "periodic"]),
+    "gravity_mismatch": (
+        "fix gravity 9.81 m/s2 in LAMMPS, constant/g zero",
+        lambda c: edit(c, LMP, "thermo 200", "thermo 200\nfix grav all gravity 9.81 vector 0 -1 0"),
+        ["mismatched gravity", "(0 -9.81 0)", "constant/g is (0 0 0)"]),
     "missing_lammpsInput": (
         "no lammpsInput entry in particles",
         lambda c: drop_lines(c, PROPS, r"^\s*lammpsInput .*\n"),
