@@ -13,11 +13,14 @@ when the solver
     its sub-cycles: meltdemFoam passes LAMMPS's ERROR and WARNING lines to its output).
 The clean case must run its few steps to the end, so a variant cannot pass by breaking
 something else.
-usage: bad_input.py [--keep] [--only NAME ...]
+With --np N every case is decomposed (mesh split along the channel) and run with mpirun -np N:
+the message must come the same way, and no rank may hang.
+usage: bad_input.py [--np N] [--keep] [--only NAME ...]
 """
 import importlib.util
 import os
 import re
+import signal
 import subprocess
 import sys
 import tempfile
@@ -152,7 +155,7 @@ VARIANTS = {
         "a LAMMPS error inside the first DEM sub-cycles (fix print of 1/(step-3))",
         lambda c: edit(c, LMP, "thermo 200", 'thermo 200\nvariable bad equal 1/(step-3)\n'
                        'fix pr all print 3 "${bad}"'),
-        ["ERROR on proc 0", "Divide by 0", "Last command: run"]),
+        ["ERROR on proc", "Divide by 0", "Last command: run"]),
     "lammps_syntax_error": (
         "an unknown command in the LAMMPS input",
         lambda c: edit(c, LMP, "neighbor 1e-5 bin", "neighbour 1e-5 bin"),
@@ -166,15 +169,24 @@ def build(case):
     edit(case, "system/controlDict", re.compile(r"^endTime .*;$", re.M), f"endTime {end!r};")
 
 
-def run(case):
+def run(case, np_=1):
     env = dict(os.environ)
     env.setdefault("WM_PROJECT_DIR", "/usr/share/openfoam")
+    cmd = [fc.solver()]
+    if np_ > 1:
+        cc.decompose(case, np_)
+        cmd = ["mpirun", "--allow-run-as-root", "--oversubscribe", "-np", str(np_)] + cmd + ["-parallel"]
+        env.update(OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+    # own process group: a hang is killed with every rank
+    p = subprocess.Popen(cmd, cwd=case, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, env=env,
+                         start_new_session=True)
     try:
-        r = subprocess.run([fc.solver()], cwd=case, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-                           env=env, timeout=TIMEOUT)
-        rc, out = r.returncode, r.stdout.decode(errors="replace")
-    except subprocess.TimeoutExpired as e:
-        rc, out = None, (e.stdout or b"").decode(errors="replace") + f"\n[killed after {TIMEOUT} s]\n"
+        out, _ = p.communicate(timeout=TIMEOUT)
+        rc, out = p.returncode, out.decode(errors="replace")
+    except subprocess.TimeoutExpired:
+        os.killpg(p.pid, signal.SIGKILL)
+        out, _ = p.communicate()
+        rc, out = None, out.decode(errors="replace") + f"\n[killed after {TIMEOUT} s]\n"
     with open(os.path.join(case, "log.meltdemFoam"), "w") as f:
         f.write(out)
     return rc, out
@@ -195,14 +207,16 @@ def message(out):
 def main():
     keep = "--keep" in sys.argv
     only = sys.argv[sys.argv.index("--only") + 1:] if "--only" in sys.argv else None
+    np_ = int(sys.argv[sys.argv.index("--np") + 1]) if "--np" in sys.argv else 1
+    test = TEST + (f".np{np_}" if np_ > 1 else "")
     work = tempfile.mkdtemp(prefix="meltdem-coupling-bad-input-")
     ok = True
 
     clean = os.path.join(work, "clean")
     build(clean)
-    rc, out = run(clean)
+    rc, out = run(clean, np_)
     n = steps_taken(out)
-    ok &= report(TEST, f"clean case runs its {STEPS} steps to the end (exit code, steps)", f"rc {rc}, {n} steps",
+    ok &= report(test, f"clean case runs its {STEPS} steps to the end (exit code, steps)", f"rc {rc}, {n} steps",
                  f"rc 0, {STEPS} steps", "exact", rc == 0 and n == STEPS and "\nEnd" in out)
 
     for name, (what, breakit, words) in VARIANTS.items():
@@ -211,18 +225,18 @@ def main():
         case = os.path.join(work, name)
         build(case)
         breakit(case)
-        rc, out = run(case)
+        rc, out = run(case, np_)
         text = message(out)
-        signal = (rc is None or rc < 0 or rc >= 128
+        killed = (rc is None or rc < 0 or rc >= 128
                   or re.search(r"Foam::sigSegv|Foam::sigFpe|printStack|Segmentation fault", out))
         named = bool(text) and all(w in text for w in words)
         first = " ".join(l.strip() for l in text.splitlines()[:6] if l.strip())[:200] if text else out[-200:]
         print(f"{name}: rc {rc}; {first!r}")
-        ok &= report(TEST, f"{what}: stops with a message holding {words}",
-                     f"rc {rc}, {'signal/timeout' if signal else 'exit'}, "
+        ok &= report(test, f"{what}: stops with a message holding {words}",
+                     f"rc {rc}, {'signal/timeout' if killed else 'exit'}, "
                      f"{'names it' if named else 'does not name it'}",
-                     "non-zero exit naming the problem", "exact", rc not in (0, None) and not signal and named)
-        ok &= check_at_most(TEST, f"{what}: fluid steps taken before the message", steps_taken(out), 0)
+                     "non-zero exit naming the problem", "exact", rc not in (0, None) and not killed and named)
+        ok &= check_at_most(test, f"{what}: fluid steps taken before the message", steps_taken(out), 0)
     return fc.finish(ok, work, keep)
 
 
