@@ -390,8 +390,20 @@ void FixPowderMelt::end_of_step()
     const double d = 2.0 * radius[i], m = rmass[i];
     mc::MeltStepResult r;
     try {
-      const double Re = mc::slip_reynolds(fluid, v[i], d);
-      r = mc::heat_melt_step(mat, melt[i][HSPEC], m, d, mc::ranz_marshall_k_nu(fluid, Re), fluid.T, dt);
+      // light absorbed this step first (operator split), then the fluid's heat
+      mc::MeltStepResult lit;
+      lit.h = melt[i][HSPEC], lit.m = m, lit.d = d;
+      if (fluid.heat_source > 0.0) lit = mc::absorb_heat(mat, melt[i][HSPEC], m, d, fluid.heat_source * dt);
+      if (lit.fully_molten) {
+        r = lit;
+        r.heat = 0.0;
+      } else {
+        const double Re = mc::slip_reynolds(fluid, v[i], lit.d);
+        r = mc::heat_melt_step(mat, lit.h, lit.m, lit.d, mc::ranz_marshall_k_nu(fluid, Re), fluid.T, dt);
+        r.mass_melted += lit.mass_melted;
+        r.enthalpy_out += lit.enthalpy_out;
+      }
+      melt[i][I_LASER] += lit.heat;
     } catch (std::invalid_argument &e) {
       error->one(FLERR, "Fix powder/melt: atom {}: {}", atom->tag[i], e.what());
     }
@@ -594,6 +606,7 @@ mc::ExchangeRecord FixPowderMelt::record(int i) const
   r.momentum_out = Eigen::Vector3d(melt[i][I_PX], melt[i][I_PY], melt[i][I_PZ]);
   r.heat_absorbed = melt[i][I_HEAT];
   r.impulse_from_fluid = Eigen::Vector3d(melt[i][I_DX], melt[i][I_DY], melt[i][I_DZ]);
+  r.external_heat = melt[i][I_LASER];
   return r;
 }
 

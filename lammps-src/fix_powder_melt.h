@@ -88,8 +88,8 @@ class FixPowderMelt : public Fix {
  private:
   // per-atom columns; dumps see TEMP and FRAC. MOLTEN = 1: fully molten, booked, removed
   // at the next step's pre_exchange. I_* accumulate over the coupling interval: molten
-  // mass, enthalpy and momentum handed over, heat absorbed, drag impulse
-  enum { TEMP, FRAC, HSPEC, MASS0, MOLTEN, I_MASS, I_ENTH, I_PX, I_PY, I_PZ, I_HEAT, I_DX, I_DY, I_DZ, NCOL };
+  // mass, enthalpy and momentum handed over, heat absorbed, drag impulse, laser energy
+  enum { TEMP, FRAC, HSPEC, MASS0, MOLTEN, I_MASS, I_ENTH, I_PX, I_PY, I_PZ, I_HEAT, I_DX, I_DY, I_DZ, I_LASER, NCOL };
   std::vector<meltdem::coupling::ExchangeRecord> finished;  // deleted this interval
   meltdem::coupling::ExchangeRecord record(int i) const;
   meltdem::coupling::MeltMaterial mat;

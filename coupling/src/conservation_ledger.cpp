@@ -126,6 +126,7 @@ void ConservationLedger::book_particle(const ExchangeRecord &r)
     if (!std::isfinite(ex[q]))
       throw std::invalid_argument("ConservationLedger: non-finite exchange of particle " + std::to_string(r.id));
   book_exchange(local_[kExchange], r);
+  if (r.external_heat != 0.0) book(kParticleSource, kEnthalpy, r.external_heat);
   ++local_particles_;
 }
 
@@ -138,6 +139,7 @@ void ConservationLedger::book_lost(const ExchangeRecord &r)
 {
   book(kLost, stored_in(r));
   book_exchange(local_[kExchange], r);
+  if (r.external_heat != 0.0) book(kParticleSource, kEnthalpy, r.external_heat);
   ++local_lost_;
 }
 

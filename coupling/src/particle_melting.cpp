@@ -90,4 +90,38 @@ MeltStepResult heat_melt_step(const MeltMaterial &mat, double h, double m, doubl
   return r;
 }
 
+MeltStepResult absorb_heat(const MeltMaterial &mat, double h, double m, double d, double energy)
+{
+  check_material(mat);
+  if (!(m > 0.0) || !(d > 0.0)) throw std::invalid_argument("absorb_heat needs m > 0, d > 0");
+  if (!(energy >= 0.0)) throw std::invalid_argument("absorb_heat needs energy >= 0");
+  const double hm = mat.cp * mat.Tmelt;
+  MeltStepResult r;
+  r.h = std::min(h, hm);
+  r.m = m;
+  r.d = d;
+  r.heat = energy;
+  const double sensible = std::min(energy, m * (hm - r.h));
+  r.h += sensible / m;
+  const double left = energy - sensible;
+  if (left <= 0.0) return r;
+  const double melted = std::min(m, left / mat.latent);
+  r.mass_melted = melted;
+  r.m = m - melted;
+  if (melted >= m || !(r.m > 0.0)) {
+    r.m = 0.0;
+    r.d = 0.0;
+    r.fully_molten = true;
+    r.mass_melted = m;
+    // everything the particle held plus the energy goes with the melt
+    r.enthalpy_out = m * h + energy;
+    r.h = hm;
+    return r;
+  }
+  r.d = d * std::cbrt(r.m / m);
+  r.enthalpy_out = melted * (hm + mat.latent);
+  // the identity m h + energy = m' h' + out, exactly up to rounding
+  return r;
+}
+
 }  // namespace meltdem::coupling

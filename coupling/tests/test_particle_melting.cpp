@@ -130,3 +130,22 @@ TEST(ParticleMelting, BadInput)
   f.k = 100.0, f.cp = 5210.928, f.mu = 2.1e-5, f.rho = 1.6115;
   expect_relative("k Nu at Re = 0 (Nu = 2)", ranz_marshall_k_nu(f, 0.0), 200.0, 1e-15);
 }
+
+TEST(ParticleMelting, AbsorbHeatKeepsTheBalanceAndMeltsTheExcess)
+{
+  const MeltMaterial mat{500.0, 1700.0, 2.7e5};
+  const double d = 1e-4, m = 7800 * M_PI / 6 * d * d * d, h = 500.0 * 300.0;
+  const double half = m * 500 * 1400 + 0.5 * m * 2.7e5;  // to Tm, then half the latent heat
+  for (double E : {0.0, 1e-4, m * 500 * 1400, half, 1.0}) {  // nothing, sensible, to Tm, partly, all molten
+    const MeltStepResult r = absorb_heat(mat, h, m, d, E);
+    EXPECT_NEAR(m * h + E, r.m * r.h + r.enthalpy_out, 1e-15 * (m * h + E)) << "E = " << E;
+    EXPECT_EQ(r.heat, E);
+    EXPECT_NEAR(r.mass_melted, m - r.m, 1e-25);
+    if (E == 1.0) EXPECT_TRUE(r.fully_molten);
+    if (E == half) {
+      EXPECT_NEAR(r.mass_melted, 0.5 * m, 1e-15 * m);
+      EXPECT_NEAR(r.d, d * std::cbrt(r.m / m), 1e-18);
+    }
+  }
+  EXPECT_THROW(absorb_heat(mat, h, m, d, -1.0), std::invalid_argument);
+}

@@ -100,7 +100,8 @@ Foam::meltdem::particleCoupling::particleCoupling
     subSteps_(0),
     exchangeSeconds_(0),
     lammpsSeconds_(0),
-    warnedStep_(false)
+    warnedStep_(false),
+    laser_(nullptr)
 {
     if (!meltdemDict.found("particles") || !meltdemDict.isDict("particles"))
     {
@@ -190,7 +191,7 @@ Foam::meltdem::particleCoupling::particleCoupling
             << "time,dt,dem_steps,particles,solid_mass,particle_enthalpy,heat_absorbed,"
             << "mass_melted,enthalpy_handed_over,momentum_handed_over_x,"
             << "momentum_handed_over_y,momentum_handed_over_z,drag_impulse_x,"
-            << "drag_impulse_y,drag_impulse_z,exchange_seconds,lammps_seconds\n";
+            << "drag_impulse_y,drag_impulse_z,laser_heat,exchange_seconds,lammps_seconds\n";
     }
 
     Info<< "Particles: " << lammps_->particles() << " particles, DEM step "
@@ -337,16 +338,6 @@ void Foam::meltdem::particleCoupling::advance(Time& runTime, const fluidFields& 
             vmax*runTime.deltaTValue() + Foam::cbrt(gMax(mesh_.V().field()));
         exchange_->nearest_solid(solidFraction.cdata(), reach, solid);
     }
-    std::unordered_map<std::int64_t, mc::FluidState> fluid;
-    for (std::int64_t g = 0; g < exchange_->global_particles(); ++g)
-    {
-        if (!exchange_->global_inside(g)) continue;
-        mc::FluidState& fs = fluid[exchange_->global_id(g)];
-        fs = sampled[g].fluid;
-        if (!solid.empty()) fs.solid = solid[g];
-    }
-    lammps_->set_fluid(std::move(fluid));
-
     // 2. whole DEM steps up to the fluid step
     const scalar dtDem = lammps_->timestep();
     const scalar dtFluid = runTime.deltaTValue();
@@ -365,6 +356,21 @@ void Foam::meltdem::particleCoupling::advance(Time& runTime, const fluidFields& 
     }
     const scalar remaining = runTime.endTime().value() - runTime.value();
     n = min(n, max(label(1), label(std::ceil(remaining/dtDem - 1e-9))));
+
+    // the light each particle absorbs over the step (fixed, at mid-step)
+    std::vector<double> light;
+    shadeParticles(runTime, start, n*dtDem, light);
+
+    std::unordered_map<std::int64_t, mc::FluidState> fluid;
+    for (std::int64_t g = 0; g < exchange_->global_particles(); ++g)
+    {
+        if (!exchange_->global_inside(g)) continue;
+        mc::FluidState& fs = fluid[exchange_->global_id(g)];
+        fs = sampled[g].fluid;
+        if (!solid.empty()) fs.solid = solid[g];
+        if (!light.empty()) fs.heat_source = light[g];
+    }
+    lammps_->set_fluid(std::move(fluid));
 
     const std::int64_t before = lammps_->particles();
     const double tLmp0 = lammps_->time();
@@ -504,7 +510,7 @@ void Foam::meltdem::particleCoupling::book(const functionObjects::meltdemBalance
     const mc::LedgerStep& s = L.end_step();
 
     // what the particles did this step (global sums), for plots and the heat split
-    double sums[12] = {};
+    double sums[12] = {};  // the 12th: laser energy the particles absorbed
     for (const auto* list : {&inside_, &lost_})
     {
         for (const auto& r : *list)
@@ -519,16 +525,17 @@ void Foam::meltdem::particleCoupling::book(const functionObjects::meltdemBalance
                 sums[5 + d] += r.momentum_out[d];
                 sums[8 + d] += r.impulse_from_fluid[d];
             }
+            sums[11] += r.external_heat;
         }
     }
-    MPI_Allreduce(MPI_IN_PLACE, sums, 11, MPI_DOUBLE, MPI_SUM, comm_);
+    MPI_Allreduce(MPI_IN_PLACE, sums, 12, MPI_DOUBLE, MPI_SUM, comm_);
     if (particlesCsv_)
     {
         std::ostream& o = *particlesCsv_;
         o.precision(17);
         o << mesh_.time().value() << ',' << mesh_.time().deltaTValue() << ',' << subSteps_
           << ',' << s.particles;
-        for (int k = 0; k < 11; ++k) o << ',' << sums[k];
+        for (int k = 0; k < 12; ++k) o << ',' << sums[k];
         o << ',' << exchangeSeconds_ << ',' << lammpsSeconds_ << '\n';
         o.flush();
     }
@@ -537,4 +544,57 @@ void Foam::meltdem::particleCoupling::book(const functionObjects::meltdemBalance
         << " momentum (" << s.continuum_error[mc::kMomX] << " "
         << s.continuum_error[mc::kMomY] << " " << s.continuum_error[mc::kMomZ] << ")"
         << nl << endl;
+}
+
+
+void Foam::meltdem::particleCoupling::shadeParticles
+(
+    const Time& runTime,
+    const std::vector<mc::ExchangeRecord>& start,
+    scalar dtPlanned,
+    std::vector<double>& absorbed
+)
+{
+    absorbed.clear();
+    if (!laser_) return;
+    const scalar tMid = runTime.value() + 0.5*dtPlanned;
+    if (!laser_->on(tMid) || laser_->power() <= 0)
+    {
+        laser_->setShadow({}, 1);
+        return;
+    }
+    mc::GaussianBeam beam;
+    beam.power = laser_->power();
+    beam.absorptivity = laser_->absorptivity();
+    beam.radius = laser_->radius();
+    const point c(laser_->position(tMid));
+    const vector& e = laser_->direction();
+    beam.centre = Eigen::Vector3d(c.x(), c.y(), c.z());
+    beam.direction = Eigen::Vector3d(e.x(), e.y(), e.z());
+    std::vector<mc::BeamParticle> local;
+    local.reserve(start.size());
+    for (const auto& r : start) local.push_back({r.x, r.radius});
+    shadow_ = mc::shade_particles(comm_, beam, local);
+
+    // by global index (rank order, as the exchange numbers them)
+    long n = long(start.size()), offset = 0;
+    MPI_Exscan(&n, &offset, 1, MPI_LONG, MPI_SUM, comm_);
+    int rank = 0;
+    MPI_Comm_rank(comm_, &rank);
+    if (rank == 0) offset = 0;
+    absorbed.assign(std::size_t(exchange_->global_particles()), 0.0);
+    for (long i = 0; i < n; ++i) absorbed[std::size_t(offset + i)] = shadow_.absorbed[std::size_t(i)];
+    if (!absorbed.empty())
+    {
+        MPI_Allreduce(MPI_IN_PLACE, absorbed.data(), int(absorbed.size()), MPI_DOUBLE, MPI_SUM, comm_);
+    }
+    const mc::ShadowResult* result = &shadow_;
+    laser_->setShadow
+    (
+        [result](const point& p, const scalar footprint)
+        {
+            return scalar(mc::transmitted_fraction(*result, Eigen::Vector3d(p.x(), p.y(), p.z()), footprint));
+        },
+        shadow_.transmitted_power/beam.power
+    );
 }

@@ -97,7 +97,7 @@ def cell_centres_y(n, lo, hi):
 
 def channel_case(case, model, particle, channel=None, gas=None, t_end=8.5e-3, fluid_dt=1e-5,
                  dem_dt=1e-6, max_co=0.5, metal_k=30.0, extra_lammps="", g=(0.0, 0.0, 0.0),
-                 floor=None, melt_keywords=""):
+                 floor=None, melt_keywords="", physics=None, extra_properties="", particles_script=None):
     """A box channel along y (inlet ymax with U = (0, u, 0), outlet ymin, slip walls), gas at
     rest or flowing, one particle from LAMMPS. particle: dict d, rho, cp, Tm, L, T0, x, y, z,
     v (velocity vector) and held (no time integration: the particle stays where it is).
@@ -148,7 +148,8 @@ def channel_case(case, model, particle, channel=None, gas=None, t_end=8.5e-3, fl
                       '"T.*" { solver PBiCGStab; preconditioner DILU; tolerance 1e-15; relTol 0; }')
     txt = txt.replace('relaxationFactors { equations { ".*" 1; } }', "")
     open(sol, "w").write(txt)
-    fc.meltdem_properties(case, physics=dict(energy="on", surfaceTension="off", particles="on"), extra=f"""
+    fc.meltdem_properties(case, physics=dict(dict(energy="on", surfaceTension="off", particles="on"),
+                                             **(physics or {})), extra=extra_properties + f"""
 metal {{ cp {p["cp"]!r}; k {metal_k!r}; L {p["L"]!r}; Tsolidus {p["Tm"] - 1!r}; Tliquidus {p["Tm"]!r}; }}
 gas {{ cp {gs["cp"]!r}; k {gs["k"]!r}; }}
 energyControls {{ nCorrectors 50; tolerance 1e-13; }}

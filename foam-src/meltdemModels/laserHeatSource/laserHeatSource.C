@@ -32,6 +32,7 @@ Foam::meltdem::laserHeatSource::laserHeatSource
     speed_(0),
     tStart_(dict.getOrDefault<scalar>("tStart", 0)),
     tStop_(dict.getOrDefault<scalar>("tStop", GREAT)),
+    transmittedShare_(1),
     absorbedPower_(0),
     hitFraction_(0)
 {
@@ -266,12 +267,24 @@ Foam::tmp<Foam::volScalarField> Foam::meltdem::laserHeatSource::heatSource
         }
     }
     reduce(raw, sumOp<scalar>());
+    if (shadow_)
+    {
+        // what the particles above a cell leave of the beam there
+        forAll(qi, celli)
+        {
+            if (qi[celli] > 0)
+            {
+                qi[celli] *= shadow_(C[celli], 0.5*Foam::cbrt(mesh_.V()[celli]));
+            }
+        }
+    }
     if (alphaWeighted_)
     {
         qi *= max(min(alphaMetal.primitiveField(), scalar(1)), scalar(0));
     }
 
-    // the normalisation is that of the weighted shape; the hit test uses the plain one
+    // the normalisation is that of the weighted (and shadowed) shape; the hit test uses
+    // the plain one
     const scalar weighted = gSum(qi*mesh_.V());
     hitFraction_ = 2*raw/(constant::mathematical::pi*sqr(radius_));
     if (hitFraction_ < minHitFraction_ || weighted <= 0)
@@ -282,7 +295,7 @@ Foam::tmp<Foam::volScalarField> Foam::meltdem::laserHeatSource::heatSource
     }
 
     const scalar target =
-        absorptivity_*power_*lit
+        absorptivity_*power_*lit*transmittedShare_
        *(scaleByHitFraction_ ? min(hitFraction_, scalar(1)) : scalar(1));
     qi *= target/weighted;
     q.correctBoundaryConditions();

@@ -37,6 +37,9 @@ struct ExchangeRecord {
   // taken from the continuum over this step: the continuum loses both
   double heat_absorbed = 0.0;                                    // convective heat [J] (< 0 when cooling)
   Eigen::Vector3d impulse_from_fluid = Eigen::Vector3d::Zero();  // drag + buoyancy impulse [kg m/s]
+
+  // from outside the system over this step (laser light on the particle) [J]
+  double external_heat = 0.0;
 };
 
 // mass, enthalpy m h and momentum m v the particle carries at the end of the step

@@ -15,6 +15,7 @@ struct FluidState {
   double cp = 0.0;              // specific heat capacity [J/(kg K)]
   double U[3] = {0.0, 0.0, 0.0};  // velocity [m/s]
   SolidSurface solid;             // nearest solid metal of the continuum (if any)
+  double heat_source = 0.0;       // power from outside the fluid (laser) absorbed [W]
 };
 
 class FluidStateProvider {

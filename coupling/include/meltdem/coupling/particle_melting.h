@@ -45,6 +45,11 @@ struct MeltStepResult {
   bool fully_molten = false;
 };
 
+// Energy [J] from outside the fluid (a laser) absorbed at once: it heats the particle up
+// to Tm, then melts it (L per kilogram); what is left once it has melted completely goes
+// with the melt (enthalpy_out). heat = energy; m h + energy = m' h' + enthalpy_out exactly.
+MeltStepResult absorb_heat(const MeltMaterial &mat, double h, double m, double d, double energy);
+
 // One step of length dt with k_nu = k_f Nu [W/(m K)] and fluid temperature T_fluid.
 MeltStepResult heat_melt_step(const MeltMaterial &mat, double h, double m, double d, double k_nu,
                               double T_fluid, double dt);
