@@ -1,6 +1,7 @@
 // Conservation ledger over MPI (issue 5): run with mpirun -np 2. Particles and cells of the
 // synthetic melt are split round-robin over the ranks; every rank also runs the whole case
 // alone on MPI_COMM_SELF. The reduced totals and errors must equal the serial ones to 1e-12.
+#include "mpi_gtest.h"
 #include "ledger_synthetic_melt.h"
 #include "meltdem/coupling/conservation_ledger.h"
 #include "validation_report.h"
@@ -11,7 +12,7 @@ using namespace meltdem::coupling;
 using namespace meltdem::coupling::testing;
 
 namespace {
-int rank = 0, size = 1;
+const int &rank = meltdem::testing::mpi_rank, &size = meltdem::testing::mpi_size;
 
 // relative difference, measured against the largest magnitude of the quantity in the run
 void compare(const std::string &what, double worst, double tol)
@@ -73,21 +74,4 @@ TEST(ConservationLedgerMpi, TotalsEqualSerial)
   }
   if (rank == 0) std::cout << "np " << size << ": " << hp.size() << " steps, worst total difference " << worst_total
                            << ", worst error difference " << worst_error << std::endl;
-}
-
-int main(int argc, char **argv)
-{
-  MPI_Init(&argc, &argv);
-  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-  MPI_Comm_size(MPI_COMM_WORLD, &size);
-  ::testing::InitGoogleTest(&argc, argv);
-  if (rank != 0) {  // one rank prints
-    auto &listeners = ::testing::UnitTest::GetInstance()->listeners();
-    delete listeners.Release(listeners.default_result_printer());
-  }
-  const int rc = RUN_ALL_TESTS();
-  int worst = rc;
-  MPI_Allreduce(&rc, &worst, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
-  MPI_Finalize();
-  return worst;
 }

@@ -1,5 +1,6 @@
 // Laser shadowing over MPI (run with mpirun -np 2): particles split round-robin over the
 // ranks must absorb what the serial cast gives them, and the balance must close globally.
+#include "mpi_gtest.h"
 #include "meltdem/coupling/laser_shadowing.h"
 #include "validation_report.h"
 
@@ -14,7 +15,7 @@
 using namespace meltdem::coupling;
 
 namespace {
-int rank = 0, size = 1;
+const int &rank = meltdem::testing::mpi_rank, &size = meltdem::testing::mpi_size;
 
 void check(const std::string &what, double measured, double reference, double tol)
 {
@@ -93,21 +94,4 @@ TEST(LaserShadowingMpi, BadInputOnOneRankThrowsEverywhere)
     const std::string msg = e.what();
     EXPECT_NE(msg.find(rank == 1 ? "local particle 1 radius = -1" : "on another rank"), std::string::npos) << msg;
   }
-}
-
-int main(int argc, char **argv)
-{
-  MPI_Init(&argc, &argv);
-  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-  MPI_Comm_size(MPI_COMM_WORLD, &size);
-  ::testing::InitGoogleTest(&argc, argv);
-  if (rank != 0) {
-    auto &listeners = ::testing::UnitTest::GetInstance()->listeners();
-    delete listeners.Release(listeners.default_result_printer());
-  }
-  int failed = RUN_ALL_TESTS();
-  int any = 0;
-  MPI_Allreduce(&failed, &any, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
-  MPI_Finalize();
-  return any;
 }

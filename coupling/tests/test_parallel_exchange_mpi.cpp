@@ -2,6 +2,7 @@
 // holds cells i < 6, rank 1 the rest) and the particles are dealt round-robin, unlike
 // the mesh: every cell's deposit and every particle's sampled field must equal the
 // single-rank result on the whole mesh.
+#include "mpi_gtest.h"
 #include "meltdem/coupling/parallel_exchange.h"
 #include "parallel_exchange_case.h"
 #include "validation_report.h"
@@ -14,7 +15,7 @@ using namespace meltdem::coupling;
 using namespace meltdem::coupling::testing;
 
 namespace {
-int rank = 0, size = 1;
+const int &rank = meltdem::testing::mpi_rank, &size = meltdem::testing::mpi_size;
 }
 
 class ParallelExchangeMpi : public ::testing::TestWithParam<DistributionModel> {};
@@ -97,20 +98,3 @@ INSTANTIATE_TEST_SUITE_P(Models, ParallelExchangeMpi,
                          ::testing::Values(DistributionModel::Centre, DistributionModel::Neighbours,
                                            DistributionModel::Overlap),
                          [](const auto &info) { return std::string(to_string(info.param)); });
-
-int main(int argc, char **argv)
-{
-  MPI_Init(&argc, &argv);
-  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-  MPI_Comm_size(MPI_COMM_WORLD, &size);
-  ::testing::InitGoogleTest(&argc, argv);
-  if (rank != 0) {  // one rank prints
-    auto &listeners = ::testing::UnitTest::GetInstance()->listeners();
-    delete listeners.Release(listeners.default_result_printer());
-  }
-  const int rc = RUN_ALL_TESTS();
-  int worst = rc;
-  MPI_Allreduce(&rc, &worst, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
-  MPI_Finalize();
-  return worst;
-}

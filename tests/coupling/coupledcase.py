@@ -3,6 +3,7 @@
 (serial, or decomposed with mpirun -np N). The 2D writers of tests/support/foamcase.py do
 the dictionaries they share."""
 import os
+import re
 import sys
 
 import numpy as np
@@ -188,3 +189,42 @@ thermo_modify format float %.12g
 thermo 200
 {extra_lammps}
 """)
+
+
+def track_commands(every=50):
+    """LAMMPS lines that print the (single) particle's y and vy in the thermo output."""
+    return f"""compute py all property/atom y vy
+compute ys all reduce sum c_py[1] c_py[2]
+thermo_style custom step time atoms c_ys[1] c_ys[2]
+thermo_modify format float %.12g
+thermo {every}
+"""
+
+
+def track(log):
+    """(time, y, vy) of the single particle from a LAMMPS log with track_commands()."""
+    rows = []
+    for line in open(log):
+        w = line.split()
+        if len(w) == 5 and re.fullmatch(r"\d+", w[0]) and w[2] == "1":
+            try:
+                rows.append((float(w[1]), float(w[3]), float(w[4])))
+            except ValueError:
+                pass
+    return np.array(sorted(set(rows)))
+
+
+def check_balances(test, ledger_rows, mass=1e-13, energy=1e-6, momentum=None, xfail=None, momentum_xfail=None):
+    """The worst per-step continuum errors of a ledger (thesis eq. 2.20, 2.26, 2.36) against
+    their bounds (momentum only when given); returns whether all held."""
+    from meltdem_report import check_at_most
+    steps = ledger_rows[1:]  # the first step has no previous one
+    ok = check_at_most(test, "worst per-step continuum mass error (eq. 2.20)",
+                       np.max(np.abs(steps["mass_continuum_error"])), mass, xfail=xfail)
+    ok &= check_at_most(test, "worst per-step continuum energy error (eq. 2.26)",
+                        np.max(np.abs(steps["enthalpy_continuum_error"])), energy, xfail=xfail)
+    if momentum is not None:
+        worst = max(np.max(np.abs(steps[f"mom_{c}_continuum_error"])) for c in "xyz")
+        ok &= check_at_most(test, "worst per-step continuum momentum error (eq. 2.36)", worst, momentum,
+                            xfail=xfail or momentum_xfail)
+    return ok

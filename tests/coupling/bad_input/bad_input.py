@@ -107,6 +107,14 @@ VARIANTS = {
         "lammpsInput names a file that does not exist",
         lambda c: edit(c, PROPS, "lammpsInput     in.particles;", "lammpsInput     in.nothere;"),
         ["lammpsInput", "cannot open", "in.nothere"]),
+    "lammpsInput_directory": (
+        "lammpsInput names a folder (constant)",
+        lambda c: edit(c, PROPS, "lammpsInput     in.particles;", "lammpsInput     constant;"),
+        ["lammpsInput", "cannot open", "constant (missing, empty or not a file)"]),
+    "lammpsInput_empty": (
+        "lammpsInput is an empty file",
+        lambda c: open(os.path.join(c, LMP), "w").close(),
+        ["lammpsInput", "cannot open", "in.particles (missing, empty or not a file)"]),
     "unknown_distribution": (
         "distribution cells (unknown model)",
         lambda c: edit(c, PROPS, re.compile(r"distribution\s+\w+;"), "distribution    cells;"),

@@ -86,13 +86,7 @@ def main():
           f"fluid dt before {dt_before:.3g} s, smallest while melting {dt_min:.3g} s")
     ok &= check_at_most(test, "fluid step collapse: dt before melting / smallest dt while melting",
                         dt_before / dt_min, 2.0, xfail=xf or XFAIL_COLLAPSE.get(a.model))
-    steps = d[1:]
-    ok &= check_at_most(test, "worst per-step continuum mass error", np.max(np.abs(steps["mass_continuum_error"])),
-                        1e-13, xfail=xf)
-    ok &= check_at_most(test, "worst per-step continuum energy error",
-                        np.max(np.abs(steps["enthalpy_continuum_error"])), 1e-6, xfail=xf)
-    mom = max(np.max(np.abs(steps[f"mom_{c}_continuum_error"])) for c in "xyz")
-    ok &= check_at_most(test, "worst per-step continuum momentum error", mom, 1e-7, xfail=xf or XFAIL_MOMENTUM)
+    ok &= cc.check_balances(test, d, momentum=1e-7, xfail=xf, momentum_xfail=XFAIL_MOMENTUM)
     ok &= check_relative(test, "metal mass handed over vs particle mass [kg]", np.sum(p["mass_melted"]), M_P,
                          1e-12, xfail=xf)
     return fc.finish(ok, work, a.keep)

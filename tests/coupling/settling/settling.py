@@ -27,30 +27,10 @@ TEST = "coupling.settling"
 D, RHO_P, RHO_G, MU_G, G = 10e-6, 7800.0, 1.2, 1.8e-5, 9.81
 T_END, AVERAGE = 15e-3, 2e-3
 PARTICLE = dict(d=D, rho=RHO_P, cp=500.0, Tm=5000.0, L=2.7e5, T0=300.0, y=3e-3, v=(0.0, 0.0, 0.0))
-VY = """compute vy all property/atom vy
-compute vys all reduce sum c_vy
-thermo_style custom step time atoms c_vys
-thermo_modify format float %.12g
-thermo 10
-"""
-
-
-def thermo(log):
-    """(time, vy) rows of a LAMMPS log with the thermo_style above."""
-    rows = []
-    for line in open(log):
-        w = line.split()
-        if len(w) == 4 and re.fullmatch(r"\d+", w[0]):
-            try:
-                rows.append((float(w[1]), float(w[3])))
-            except ValueError:
-                pass
-    return np.array(sorted(set(rows)))
-
 
 def terminal(rows):
     last = rows[rows[:, 0] >= rows[-1, 0] - AVERAGE]
-    return -np.mean(last[:, 1])
+    return -np.mean(last[:, 2])
 
 
 def main():
@@ -60,9 +40,9 @@ def main():
     cc.channel_case(case, "neighbours", PARTICLE,
                     channel=dict(lx=4e-3, ly=4e-3, lz=4e-3, h=0.5e-3, u=0.0),
                     gas=dict(rho=RHO_G, mu=MU_G, cp=1005.0, k=0.026, T=300.0),
-                    t_end=T_END, fluid_dt=2e-4, dem_dt=1e-5, g=(0.0, -G, 0.0), extra_lammps=VY)
+                    t_end=T_END, fluid_dt=2e-4, dem_dt=1e-5, g=(0.0, -G, 0.0), extra_lammps=cc.track_commands(10))
     cc.run_solver(case)
-    coupled = terminal(thermo(os.path.join(case, "log.lammps")))
+    coupled = terminal(cc.track(os.path.join(case, "log.lammps")))
 
     # the same LAMMPS input standalone, with the uniform gas at rest ('ambient')
     alone = os.path.join(work, "alone")
@@ -73,7 +53,7 @@ def main():
     open(os.path.join(alone, "in.alone"), "w").write(text)
     subprocess.run([os.path.join(os.environ["MELTDEM_BIN"], "meltdem-lmp"), "-in", "in.alone", "-log", "log.lammps",
                     "-screen", "none"], cwd=alone, check=True)
-    standalone = terminal(thermo(os.path.join(alone, "log.lammps")))
+    standalone = terminal(cc.track(os.path.join(alone, "log.lammps")))
     stokes = (RHO_P - RHO_G) * G * D * D / (18 * MU_G)
     print(f"{TEST}: terminal velocity coupled {coupled:.6g} m/s, standalone ambient {standalone:.6g} m/s, "
           f"Stokes {stokes:.6g} m/s")

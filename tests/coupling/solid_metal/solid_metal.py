@@ -12,7 +12,6 @@ lowest centre height above the floor >= 0.95 R. Without the keyword the grain si
 'solid' (it only feels the metal's drag): printed for comparison.
 """
 import os
-import re
 import sys
 import tempfile
 
@@ -28,33 +27,14 @@ TEST = "coupling.solid_metal"
 D, FLOOR, E_REST, V0 = 100e-6, 0.6e-3, 0.5, 1.0
 PARTICLE = dict(d=D, rho=7800.0, cp=500.0, Tm=1700.0, L=2.7e5, T0=300.0, y=1.0e-3, v=(0.0, -V0, 0.0))
 GAS = dict(rho=1.2, mu=1.8e-5, cp=1005.0, k=0.026, T=300.0)
-TRACK = """compute py all property/atom y vy
-compute ys all reduce sum c_py[1] c_py[2]
-thermo_style custom step time atoms c_ys[1] c_ys[2]
-thermo_modify format float %.12g
-thermo 50
-"""
-
-
-def track(log):
-    rows = []
-    for line in open(log):
-        w = line.split()
-        if len(w) == 5 and re.fullmatch(r"\d+", w[0]):
-            try:
-                rows.append((float(w[1]), float(w[3]), float(w[4])))
-            except ValueError:
-                pass
-    return np.array(sorted(set(rows)))
-
 
 def run(work, name, keywords):
     case = os.path.join(work, name)
     cc.channel_case(case, "overlap", PARTICLE, channel=dict(lx=2e-3, ly=2e-3, lz=2e-3, h=0.2e-3, u=0.0),
                     gas=GAS, t_end=6e-4, fluid_dt=2e-5, dem_dt=1e-8, floor=(FLOOR, 300.0),
-                    extra_lammps=TRACK, melt_keywords=keywords)
+                    extra_lammps=cc.track_commands(50), melt_keywords=keywords)
     cc.run_solver(case)
-    return track(os.path.join(case, "log.lammps"))
+    return cc.track(os.path.join(case, "log.lammps"))
 
 
 def main():
