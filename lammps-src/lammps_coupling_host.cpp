@@ -98,10 +98,13 @@ LammpsCouplingHost::LammpsCouplingHost(MPI_Comm comm, const std::string &input_f
 {
   MPI_Comm_rank(comm, &impl_->me);
   {
+    // a directory opens as a stream but reads nothing, and an empty input would run as
+    // units lj: both are reported as what they are
     std::ifstream probe(input_file);
-    int ok = probe.good() ? 1 : 0, all = 0;
+    int ok = probe.good() && probe.peek() != std::ifstream::traits_type::eof() ? 1 : 0, all = 0;
     MPI_Allreduce(&ok, &all, 1, MPI_INT, MPI_MIN, comm);
-    if (!all) throw LammpsSetupError("cannot open the LAMMPS input file " + input_file);
+    if (!all)
+      throw LammpsSetupError("cannot open the LAMMPS input file " + input_file + " (missing, empty or not a file)");
   }
   std::vector<std::string> args = {"meltdemFoam-lammps", "-log", log_file, "-nocite"};
   if (!echo) args.insert(args.end(), {"-echo", "none"});
