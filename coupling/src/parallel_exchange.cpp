@@ -116,6 +116,7 @@ void ParallelExchange::locate(const std::vector<ParticleShape> &local)
   cells_.clear();
   weights_.clear();
   std::vector<long> candidates;
+  std::vector<CellWeight> overlap;
   for (std::size_t g = 0; g < n; ++g) {
     start_[g] = cells_.size();
     if (owner[g] == INT_MAX) continue;  // outside the mesh
@@ -144,14 +145,9 @@ void ParallelExchange::locate(const std::vector<ParticleShape> &local)
         break;
       }
       case DistributionModel::Overlap: {
-        candidates.clear();
-        mesh_.cells_in_sphere(c, r, candidates);
-        Eigen::Vector3d lo, hi;
-        for (long cell : candidates) {
-          mesh_.cell_bounds(cell, lo, hi);
-          const double v = sphere_box_overlap(c, r, lo, hi);
-          if (v > 0.0) cells_.push_back(cell), weights_.push_back(v);
-        }
+        overlap.clear();
+        append_overlap_volumes(mesh_, c, r, overlap);
+        for (const CellWeight &w : overlap) cells_.push_back(w.cell), weights_.push_back(w.weight);
         break;
       }
     }

@@ -205,6 +205,20 @@ const char *to_string(DistributionModel model)
   return "?";
 }
 
+void append_overlap_volumes(const DistributionMesh &mesh, const Eigen::Vector3d &c, double r,
+                            std::vector<CellWeight> &out)
+{
+  thread_local std::vector<long> cells;
+  cells.clear();
+  mesh.cells_in_sphere(c, r, cells);
+  Eigen::Vector3d lo, hi;
+  for (long cell : cells) {
+    mesh.cell_bounds(cell, lo, hi);
+    const double v = sphere_box_overlap(c, r, lo, hi);
+    if (v > 0.0) out.push_back({cell, v});
+  }
+}
+
 bool distribute_particle(const DistributionMesh &mesh, DistributionModel model, const Eigen::Vector3d &c,
                          double r, std::vector<CellWeight> &out)
 {
@@ -233,15 +247,7 @@ bool distribute_particle(const DistributionMesh &mesh, DistributionModel model, 
     }
 
     case DistributionModel::Overlap: {
-      thread_local std::vector<long> cells;
-      cells.clear();
-      mesh.cells_in_sphere(c, r, cells);
-      Eigen::Vector3d lo, hi;
-      for (long cell : cells) {
-        mesh.cell_bounds(cell, lo, hi);
-        const double v = sphere_box_overlap(c, r, lo, hi);
-        if (v > 0.0) out.push_back({cell, v});
-      }
+      append_overlap_volumes(mesh, c, r, out);
       if (out.empty()) return false;
       normalise_weights(out);
       return true;

@@ -87,6 +87,11 @@ struct CellWeight {
 bool distribute_particle(const DistributionMesh &mesh, DistributionModel model, const Eigen::Vector3d &c,
                          double r, std::vector<CellWeight> &out);
 
+// Raw (unnormalised) overlap weights |sphere ∩ cell| of the cells of `mesh` the sphere
+// touches, appended to `out` (the `overlap` model before normalisation).
+void append_overlap_volumes(const DistributionMesh &mesh, const Eigen::Vector3d &c, double r,
+                            std::vector<CellWeight> &out);
+
 // Volume of sphere(c, r) ∩ box [lo, hi]. Shortcuts for disjoint / box-inside / sphere-inside;
 // otherwise V = ∫ A(x) dx where A(x), the area of the slice disk ∩ rectangle, is exact
 // (inclusion-exclusion of closed-form disk ∩ quadrant areas), integrated on the sub-intervals
