@@ -11,7 +11,8 @@ argon-like gas at 1500 K (rho 0.32, mu 5.6e-5, cp 520, k 0.06; no-slip adiabatic
 --cells^3 hexahedra (20^3: h = 50 um), energy on, flow on, fluid step fixed at 1 us
 (maxDeltaT; the quiescent gas never reaches the Courant limit). The particles: a simple
 cubic lattice of spacing 60 um filling [0.05, 0.95] mm^3 (15^3 = 3375 particles, 4.8 % solid
-volume), diameters uniform 20-40 um (atom-style random, fixed seed; 0.4-0.8 cells per
+volume; lattice origin 0.4 spacings, so that no centre lies on a cell face, where the cell
+search has to break a tie), diameters uniform 20-40 um (atom-style random, fixed seed; 0.4-0.8 cells per
 diameter on 20^3 cells), steel rho 7900, cp 500, created at 300 K, fix powder/melt Tmelt 1700 K
 above the gas temperature: they HEAT BUT DO NOT MELT (no mass/enthalpy handed over, but the
 heat, drag and buoyancy of every particle are sampled and deposited every step, which is the
@@ -137,7 +138,7 @@ newton          off
 comm_modify     vel yes
 region          box block {-MARGIN!r} {L + MARGIN!r} {-MARGIN!r} {L + MARGIN!r} {-MARGIN!r} {L + MARGIN!r} units box
 create_box      1 box
-lattice         sc {spacing!r} origin 0.5 0.5 0.5
+lattice         sc {spacing!r} origin 0.4 0.4 0.4
 region          cloud block {FILL[0]!r} {FILL[1]!r} {FILL[0]!r} {FILL[1]!r} {FILL[0]!r} {FILL[1]!r} units box
 create_atoms    1 region cloud
 variable        d atom random({D_LO!r},{D_HI!r},4242)
@@ -285,7 +286,7 @@ with open(os.path.join(args.out, "coupling_exchange_share.md"), "w") as f:
             f"{CP_G:g}, k {K_G:g}), {args.cells}^3 hexahedra (h = {L / args.cells * 1e6:g} µm), energy and flow on, "
             f"fluid step {DT:g} s for {args.steps} steps; {args.per_axis}^3 = {args.per_axis ** 3} steel particles "
             f"(d uniform {D_LO * 1e6:g}–{D_HI * 1e6:g} µm, rho {RHO_P:g}, cp {CP_P:g}) on a simple cubic lattice "
-            f"filling [{FILL[0] * 1e3:g}, {FILL[1] * 1e3:g}] mm³, created at {T0:g} K, `fix powder/melt` Tmelt "
+            f"filling [{FILL[0] * 1e3:g}, {FILL[1] * 1e3:g}] mm³ (no centre on a cell face), created at {T0:g} K, `fix powder/melt` Tmelt "
             f"{TM:g} K above the gas: the particles heat (Ranz–Marshall with the local gas), feel drag and buoyancy "
             "and fall under `fix gravity`, but none melts, so every particle samples the fluid and deposits heat and "
             "momentum every step while no metal is handed over. LAMMPS box 0.1 mm beyond the mesh.\n\n")
