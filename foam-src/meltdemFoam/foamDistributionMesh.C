@@ -1,28 +1,56 @@
 #include "foamDistributionMesh.H"
 
-#include "indexedOctree.H"
-#include "treeDataCell.H"
+#include "Random.H"
 
 Foam::meltdem::foamDistributionMesh::foamDistributionMesh(const fvMesh& mesh)
 :
     mesh_(mesh),
-    cellBoxes_(mesh.nCells())
+    cellBoxes_(mesh.nCells()),
+    boxCells_(true)
 {
     const pointField& pts = mesh.points();
     const cellList& cells = mesh.cells();
     const faceList& faces = mesh.faces();
+    const scalarField& V = mesh.cellVolumes();
     forAll(cells, celli)
     {
         cellBoxes_[celli] = treeBoundBox(cells[celli].points(faces, pts));
+        if (mag(cellBoxes_[celli].volume() - V[celli]) > 1e-9*V[celli])
+        {
+            boxCells_ = false;
+        }
     }
+    reduce(boxCells_, andOp<bool>());
+
+    treeBoundBox overall(pts);
+    Random rnd(261782);
+    overall = overall.extend(rnd, 1e-4);
+    overall.min() -= point::uniform(ROOTVSMALL);
+    overall.max() += point::uniform(ROOTVSMALL);
+    tree_.reset
+    (
+        new indexedOctree<treeDataCell>
+        (
+            treeDataCell(true, mesh, polyMesh::CELL_TETS),
+            overall, 8, 10, 5.0
+        )
+    );
 }
 
 
 long Foam::meltdem::foamDistributionMesh::find_cell(const Eigen::Vector3d& p) const
 {
     const point pt(p.x(), p.y(), p.z());
-    // the octree's own inside test (polyMesh::CELL_TETS decomposition)
-    return mesh_.cellTree().findInside(pt);
+    if (!boxCells_)
+    {
+        return tree_->findInside(pt);
+    }
+    label best = -1;
+    for (const label celli : tree_->findBox(treeBoundBox(pt, pt)))
+    {
+        if (cellBoxes_[celli].contains(pt) && (best < 0 || celli < best)) best = celli;
+    }
+    return best;
 }
 
 
@@ -94,7 +122,7 @@ void Foam::meltdem::foamDistributionMesh::cells_in_sphere
         point(c.x() + r, c.y() + r, c.z() + r)
     );
     // boxes overlapping the sphere's box: a superset of the cells it touches
-    const labelList hits(mesh_.cellTree().findBox(search));
+    const labelList hits(tree_->findBox(search));
     for (const label celli : hits)
     {
         if (cellBoxes_[celli].overlaps(search)) cells.push_back(long(celli));

@@ -101,7 +101,8 @@ Foam::meltdem::particleCoupling::particleCoupling
     exchangeSeconds_(0),
     lammpsSeconds_(0),
     warnedStep_(false),
-    laser_(nullptr)
+    laser_(nullptr),
+    haveLocated_(false)
 {
     if (!meltdemDict.found("particles") || !meltdemDict.isDict("particles"))
     {
@@ -306,7 +307,7 @@ void Foam::meltdem::particleCoupling::advance(Time& runTime, const fluidFields& 
     std::vector<mc::ParticleShape> shapes;
     shapes.reserve(start.size());
     for (const auto& r : start) shapes.push_back({r.x, r.radius, r.id});
-    exchange_->locate(shapes);
+    relocate(shapes);
 
     const scalarField cp(f.rhoCp.primitiveField()/f.rho.primitiveField());
     const mc::CellFluidFields cells
@@ -399,7 +400,7 @@ void Foam::meltdem::particleCoupling::advance(Time& runTime, const fluidFields& 
     // 3./4. where each particle is now: inside -> deposit, outside -> outflow
     shapes.clear();
     for (const auto& r : records) shapes.push_back({r.x, r.radius, r.id});
-    exchange_->locate(shapes);
+    relocate(shapes);
     inside_.clear();
     lost_.clear();
     std::vector<mc::Amounts> amounts;
@@ -597,4 +598,23 @@ void Foam::meltdem::particleCoupling::shadeParticles
         },
         shadow_.transmitted_power/beam.power
     );
+}
+
+
+void Foam::meltdem::particleCoupling::relocate(const std::vector<mc::ParticleShape>& shapes)
+{
+    // the particles at the start of a step are those at the end of the last one unless
+    // some left, melted away or came: then the weights are still valid
+    // (a collective decision: every rank locates, or none)
+    int same = haveLocated_ && shapes.size() == located_.size() ? 1 : 0;
+    for (std::size_t i = 0; same && i < shapes.size(); ++i)
+    {
+        same = shapes[i].id == located_[i].id && shapes[i].radius == located_[i].radius
+            && shapes[i].x == located_[i].x;
+    }
+    MPI_Allreduce(MPI_IN_PLACE, &same, 1, MPI_INT, MPI_MIN, comm_);
+    if (same) return;
+    exchange_->locate(shapes);
+    located_ = shapes;
+    haveLocated_ = true;
 }
