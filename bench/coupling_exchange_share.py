@@ -100,7 +100,7 @@ def build(case, model, scenario, particles=True):
     cc.uniform_field(case, "p_rgh", "[1 -1 -2 0 0 0 0]", 0.0,
                      {"walls": "type fixedFluxPressure; value uniform 0;"})
     fc.transport(case, RHO_P, 6e-3 / RHO_P, RHO_G, MU_G / RHO_G, 0.0)
-    fc.gravity(case)
+    fc.gravity(case, (0.0, 0.0, -9.81))  # the same gravity as fix gravity (checked by the coupling)
     end = args.steps * DT
     fc.control_dict(case, "meltdemFoam", end, DT, end, max_co=0.5, max_alpha_co=0.5, max_dt=DT)
     fc.fv_schemes(case)
