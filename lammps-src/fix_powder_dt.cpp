@@ -67,7 +67,7 @@ constexpr double BIG = std::numeric_limits<double>::max();
 /* ---------------------------------------------------------------------- */
 
 FixPowderDt::FixPowderDt(LAMMPS *lmp, int narg, char **arg) :
-    Fix(lmp, narg, arg), steps(0.0), dtmax(0.0), interval(0.0), vfloor(0.01), estar(0.0),
+    Fix(lmp, narg, arg), steps(0.0), dtmax(0.0), interval(0.0), vfloor(0.01), maxoverlap(0.3), estar(0.0),
     uhold(0.0), thold(0.0), respaflag(0)
 {
   // time_depend: elapsed time is accumulated across dt changes
@@ -102,6 +102,10 @@ FixPowderDt::FixPowderDt(LAMMPS *lmp, int narg, char **arg) :
       need("interval");
       interval = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
       if (interval <= 0.0) error->all(FLERR, "Fix powder/dt interval must be > 0");
+    } else if (strcmp(arg[iarg], "max_overlap") == 0) {
+      need("max_overlap");
+      maxoverlap = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+      if (maxoverlap <= 0.0) error->all(FLERR, "Fix powder/dt max_overlap must be > 0");
     } else if (strcmp(arg[iarg], "vmin") == 0) {
       need("vmin");
       vfloor = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
@@ -206,8 +210,9 @@ void FixPowderDt::update_dt()
   int *mask = atom->mask;
   const int nlocal = atom->nlocal;
 
-  // local minima of radius and density, maximum of |v|^2 (negated to reduce with MIN)
-  double loc[3] = {BIG, BIG, 0.0};
+  // local minima of radius and density, maxima of |v|^2 and density (negated to reduce
+  // with MIN)
+  double loc[4] = {BIG, BIG, 0.0, 0.0};
   for (int i = 0; i < nlocal; i++)
     if ((mask[i] & groupbit) && radius[i] > 0.0) {
       const double r = radius[i];
@@ -215,9 +220,10 @@ void FixPowderDt::update_dt()
       loc[0] = std::min(loc[0], r);
       loc[1] = std::min(loc[1], rho);
       loc[2] = std::min(loc[2], -(v[i][0] * v[i][0] + v[i][1] * v[i][1] + v[i][2] * v[i][2]));
+      loc[3] = std::min(loc[3], -rho);
     }
-  double all[3];
-  MPI_Allreduce(loc, all, 3, MPI_DOUBLE, MPI_MIN, world);
+  double all[4];
+  MPI_Allreduce(loc, all, 4, MPI_DOUBLE, MPI_MIN, world);
 
   // no particle (yet): nothing to resolve, keep the current dt
   if (all[0] == BIG) {
@@ -227,7 +233,20 @@ void FixPowderDt::update_dt()
     return;
   }
 
-  const double rmin = all[0], rhomin = all[1], vmax = std::sqrt(-all[2]);
+  const double rmin = all[0], rhomin = all[1], vmax = std::sqrt(-all[2]), rhomax = -all[3];
+
+  // stiffness and speed must keep contacts small: a soft particle hit hard overlaps its
+  // neighbour by a good part of its radius, and Hertz's law (and the time step) stop
+  // meaning anything; stop and name the knobs instead of computing nonsense
+  if (vmax > 0.0) {
+    const double worst = mc::head_on_overlap_ratio(rhomax, estar, 2.0 * vmax);
+    if (worst > maxoverlap)
+      error->all(FLERR,
+                 "Fix powder/dt: two particles meeting head-on at {:.4g} m/s would overlap {:.3g} "
+                 "of their radius (E* = {:.4g} Pa, rho = {:.4g} kg/m^3), more than max_overlap {}: "
+                 "raise Young's modulus in pair_coeff, lower the impact speed, or raise max_overlap",
+                 2.0 * vmax, worst, estar, rhomax, maxoverlap);
+  }
   // A collision that started at speed U lasts t_c(U) even though the speeds drop while
   // it lasts: hold the largest U for one contact time, so dt does not grow mid-contact.
   const double now = update->atime + (update->ntimestep - update->atimestep) * update->dt;

@@ -31,6 +31,7 @@ class FixPowderDt : public Fix {
   double dtmax;          // cap on dt (0: none)
   double interval;       // coupling interval for the sub-cycle count (0: none)
   double vfloor;         // floor of the approach speed [m/s]
+  double maxoverlap;     // largest head-on overlap / radius allowed (Hertz validity)
   double estar;          // largest E* of the pair style's type pairs [Pa]
   double uhold, thold;   // held approach speed and the time it was recorded
   int respaflag;

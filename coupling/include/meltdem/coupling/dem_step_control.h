@@ -15,6 +15,13 @@ double approach_speed_bound(double v_max, double floor);
 // wall (R* -> R, m* -> m) lasts 2^0.2 times longer than two equal small spheres.
 double shortest_contact_time(double R_min, double rho_min, double E_eff_max, double U);
 
+// Largest overlap / radius of a head-on Hertz contact of two equal spheres (density rho)
+// at approach speed U, undamped (the upper bound): delta_max = (15 m* U^2 / (16 E* sqrt(R*)))^0.4
+// with m* = m/2, R* = R/2, i.e. delta_max / R = (10 pi sqrt(2)/16 rho U^2 / E*)^0.4,
+// independent of R. Hertz's law assumes small overlaps: above ~0.1-0.3 R the contact is
+// not a Hertz contact any more (and beyond 1 the spheres pass through each other).
+double head_on_overlap_ratio(double rho, double E_eff, double U);
+
 // Normal overlap of two spheres relative to the smaller radius, 0 when apart.
 double overlap_ratio(double distance, double R1, double R2);
 
