@@ -10,10 +10,8 @@ first overshoot goes to -9.6e4 K (dt (dq/dT)/(rho cp) ~ 40); with the linearisat
 lead (fvm::Sp(heatLossDerivative, T)) the peak settles at 4751 K and the loss is 8.12 of 12.5 W (booked vs
 recomputed 1.5e-6).
 """
-import math
 import os
 import re
-import shutil
 import sys
 import tempfile
 
@@ -67,11 +65,7 @@ def main():
         if undershoot <= 1.0:  # meaningless after an undershoot (the field is then ~0)
             ok &= check_relative(TEST, "evaporation loss booked by the solver vs eq. 18 of the written T [W]",
                                  booked, recomputed, 1e-3)
-    if ok and "--keep" not in sys.argv:
-        shutil.rmtree(work, ignore_errors=True)
-    else:
-        print(f"case kept in {case}")
-    return 0 if ok else 1
+    return fc.finish(ok, work, "--keep" in sys.argv, shown=case)
 
 
 if __name__ == "__main__":

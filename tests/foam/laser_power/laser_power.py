@@ -14,8 +14,6 @@ on written alpha fields of a 3D box (no solver).
 import math
 import os
 import re
-import shutil
-import subprocess
 import sys
 import tempfile
 
@@ -318,11 +316,7 @@ def main():
     ok &= check_absolute(TEST, f"bad inputs stopped with a FatalIOError naming the entry (of {len(bad)})",
                          nbad, len(bad), 0)
 
-    if ok:
-        shutil.rmtree(root, ignore_errors=True)
-    else:
-        print(f"cases kept in {root}")
-    return 0 if ok else 1
+    return fc.finish(ok, root)
 
 
 if __name__ == "__main__":

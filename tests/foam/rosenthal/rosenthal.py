@@ -15,7 +15,6 @@ Measured (5 um): width -0.53 % vs Rosenthal (serial and np 2 agree to 1e-8); 10 
 """
 import os
 import re
-import shutil
 import sys
 import tempfile
 
@@ -155,11 +154,7 @@ def main():
         best = max(best, lo)
     report(TEST, "melt-pool width [m] vs exact transient Gaussian-source solution (info)",
            w_fv, 2 * best, "info", True)
-    if ok and "--keep" not in sys.argv:
-        shutil.rmtree(work, ignore_errors=True)
-    else:
-        print(f"case kept in {case}")
-    return 0 if ok else 1
+    return fc.finish(ok, work, "--keep" in sys.argv, shown=case)
 
 
 if __name__ == "__main__":
