@@ -24,10 +24,7 @@ def box_mesh(case, lo, hi, n, patches):
     used = sorted(f for _, fs in patches.values() for f in fs)
     assert used == sorted(FACES), f"patches must cover the six faces once, got {used}"
     vs = "\n".join(f"    ({a!r} {b!r} {c!r})" for a, b, c in verts)
-    bd = "".join(
-        f"    {name}\n    {{\n        type {typ};\n        faces\n        (\n"
-        + "".join(f"            {FACES[f]}\n" for f in fs) + "        );\n    }\n"
-        for name, (typ, fs) in patches.items())
+    bd = fc.patch_entries({side: (name, typ) for name, (typ, sides) in patches.items() for side in sides}, FACES)
     fc.dictionary(case, "system/blockMeshDict", f"""scale 1;
 vertices
 (

@@ -31,6 +31,17 @@ def dictionary(case, rel, body):
     return write(case, rel, "dictionary", os.path.basename(rel), body)
 
 
+def patch_entries(sides, faces):
+    """blockMeshDict boundary entries: sides maps each block side to (patch name, type), faces
+    each side to its vertex list; sides that share a patch name form one patch (in the order
+    the names first appear)."""
+    groups = {}
+    for side, (name, typ) in sides.items():
+        groups.setdefault(name, [typ, []])[1].append(faces[side])
+    return "".join(f"    {name}\n    {{\n        type {typ};\n        faces ({' '.join(fl)});\n    }}\n"
+                   for name, (typ, fl) in groups.items())
+
+
 class Grid2D:
     """Uniform nx x ny grid on [x0, x0+lx] x [y0, y0+ly], one cell of thickness dz in z."""
 
@@ -56,17 +67,10 @@ class Grid2D:
         th = math.radians(angle_deg) / 2
         r, y0, y1 = self.lx, self.y0, self.y0 + self.ly
         c, sn = r * math.cos(th), r * math.sin(th)
-        faces = {"right": "(1 2 5 4)", "bottom": "(0 1 4 0)", "top": "(3 5 2 3)"}
-        groups = {}
-        for side in ("right", "bottom", "top"):
-            name, typ = p[side]
-            groups.setdefault(name, [typ, []])[1].append(faces[side])
-        bnd = ""
-        for name, (typ, fl) in groups.items():
-            bnd += f"    {name}\n    {{\n        type {typ};\n        faces ({' '.join(fl)});\n    }}\n"
-        bnd += "    front\n    {\n        type wedge;\n        faces ((0 4 5 3));\n    }\n"
-        bnd += "    back\n    {\n        type wedge;\n        faces ((0 3 2 1));\n    }\n"
-        bnd += "    axis\n    {\n        type empty;\n        faces ((0 3 3 0));\n    }\n"
+        faces = {"right": "(1 2 5 4)", "bottom": "(0 1 4 0)", "top": "(3 5 2 3)",
+                 "front": "(0 4 5 3)", "back": "(0 3 2 1)", "axis": "(0 3 3 0)"}
+        p.update(front=("front", "wedge"), back=("back", "wedge"), axis=("axis", "empty"))
+        bnd = patch_entries(p, faces)
         body = f"""convertToMeters 1;
 vertices
 (
@@ -89,15 +93,10 @@ mergePatchPairs ();
              "bottom": ("walls", "wall"), "top": ("walls", "wall")}
         if patches:
             p.update(patches)
-        faces = {"left": "(0 4 7 3)", "right": "(1 2 6 5)", "bottom": "(0 1 5 4)", "top": "(3 7 6 2)"}
-        groups = {}
-        for side in ("left", "right", "bottom", "top"):
-            name, typ = p[side]
-            groups.setdefault(name, [typ, []])[1].append(faces[side])
-        bnd = ""
-        for name, (typ, fl) in groups.items():
-            bnd += f"    {name}\n    {{\n        type {typ};\n        faces ({' '.join(fl)});\n    }}\n"
-        bnd += "    frontAndBack\n    {\n        type empty;\n        faces ((0 3 2 1) (4 5 6 7));\n    }\n"
+        faces = {"left": "(0 4 7 3)", "right": "(1 2 6 5)", "bottom": "(0 1 5 4)", "top": "(3 7 6 2)",
+                 "front": "(0 3 2 1)", "back": "(4 5 6 7)"}
+        p.update(front=("frontAndBack", "empty"), back=("frontAndBack", "empty"))
+        bnd = patch_entries(p, faces)
         x1, y1 = self.x0 + self.lx, self.y0 + self.ly
         body = f"""convertToMeters 1;
 vertices
