@@ -12,6 +12,18 @@ from meltdem_report import report
 LMP = os.path.join(os.environ["MELTDEM_BIN"], "meltdem-lmp")
 
 
+def _launch(cmd, cwd, np, check, timeout):
+    """meltdem-lmp with its arguments cmd (on np ranks) in cwd; (returncode, stdout+stderr)."""
+    if np > 1:
+        cmd = ["mpirun", "-np", str(np)] + cmd
+    p = subprocess.run(cmd, cwd=cwd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                       text=True, timeout=timeout)
+    if check and p.returncode != 0:
+        print(p.stdout[-4000:])
+        raise SystemExit(f"meltdem-lmp failed with exit code {p.returncode}")
+    return p.returncode, p.stdout
+
+
 def run(text, np=1, check=True, cwd=None, timeout=300):
     """Run an input (in a scratch folder, or in cwd); returns (returncode, stdout+stderr)."""
     with tempfile.TemporaryDirectory() as scratch:
@@ -19,15 +31,7 @@ def run(text, np=1, check=True, cwd=None, timeout=300):
         path = os.path.join(d, "in.test")
         with open(path, "w") as f:
             f.write(text)
-        cmd = [LMP, "-in", path, "-log", "none", "-echo", "none"]
-        if np > 1:
-            cmd = ["mpirun", "-np", str(np)] + cmd
-        p = subprocess.run(cmd, cwd=d, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-                           text=True, timeout=timeout)
-    if check and p.returncode != 0:
-        print(p.stdout[-4000:])
-        raise SystemExit(f"meltdem-lmp failed with exit code {p.returncode}")
-    return p.returncode, p.stdout
+        return _launch([LMP, "-in", path, "-log", "none", "-echo", "none"], d, np, check, timeout)
 
 
 def run_file(path, variables=None, np=1, check=True, timeout=300):
@@ -36,15 +40,8 @@ def run_file(path, variables=None, np=1, check=True, timeout=300):
     cmd = [LMP, "-in", os.path.abspath(path), "-log", "none"]
     for name, value in (variables or {}).items():
         cmd += ["-var", name, str(value)]
-    if np > 1:
-        cmd = ["mpirun", "-np", str(np)] + cmd
     with tempfile.TemporaryDirectory() as d:
-        p = subprocess.run(cmd, cwd=d, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-                           text=True, timeout=timeout)
-    if check and p.returncode != 0:
-        print(p.stdout[-4000:])
-        raise SystemExit(f"meltdem-lmp failed with exit code {p.returncode}")
-    return p.returncode, p.stdout
+        return _launch(cmd, d, np, check, timeout)
 
 
 def printed_value(out, key):
