@@ -84,6 +84,8 @@ class FixPowderMelt : public Fix {
   bigint remove_particles(const std::vector<tagint> &tags);
   const meltdem::coupling::MeltMaterial &material() const { return mat; }
   bool solid_metal_wall() const { return solid_flag != 0; }
+  // the gravity the particles feel: the sum of the fix gravity vectors (as of the last init)
+  const double *gravity(double *g) const;
 
  private:
   // per-atom columns; dumps see TEMP and FRAC. MOLTEN = 1: fully molten, booked, removed
@@ -117,7 +119,6 @@ class FixPowderMelt : public Fix {
   void refresh_output(int i);
   int delete_molten();
   bigint delete_local(const std::function<bool(int)> &doomed);
-  const double *gravity(double *g) const;
 };
 
 }    // namespace LAMMPS_NS

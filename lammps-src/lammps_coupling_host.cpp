@@ -167,15 +167,7 @@ void LammpsCouplingHost::box(double lo[3], double hi[3], int periodic[3]) const
 
 double LammpsCouplingHost::gravity(double g[3]) const
 {
-  g[0] = g[1] = g[2] = 0.0;
-  Modify *modify = impl_->lmp->modify;
-  for (int i = 0; i < modify->nfix; i++)
-    if (std::strncmp(modify->fix[i]->style, "gravity", 7) == 0) {
-      int dim;
-      auto *gvec = static_cast<double *>(modify->fix[i]->extract("gvec", dim));
-      if (gvec)
-        for (int k = 0; k < 3; k++) g[k] += gvec[k];
-    }
+  impl_->melt->gravity(g);  // the fixes were initialised by the constructor's run 0
   return std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
 }
 

@@ -72,6 +72,7 @@ Foam::meltdem::particleCoupling::particleCoupling
     mesh_(mesh),
     dict_(meltdemDict.optionalSubDict("particles")),
     rhoMetal_(rhoMetal),
+    largestCell_(Foam::cbrt(gMax(mesh.V().field()))),
     fixedSubSteps_(0),
     comm_(MPI_COMM_NULL),
     ownMpi_(false),
@@ -332,11 +333,10 @@ void Foam::meltdem::particleCoupling::advance(Time& runTime, const fluidFields& 
             f.alphaMetal.primitiveField()*(1 - f.liquidFraction.primitiveField())
         );
         // reach: what a particle can travel in this step plus a cell
-        scalar vmax = 0;
-        for (const auto& r : start) vmax = max(vmax, scalar(r.v.norm()));
-        reduce(vmax, maxOp<scalar>());
-        const scalar reach =
-            vmax*runTime.deltaTValue() + Foam::cbrt(gMax(mesh_.V().field()));
+        double vmax = 0;
+        for (const auto& r : start) vmax = std::max(vmax, r.v.norm());
+        MPI_Allreduce(MPI_IN_PLACE, &vmax, 1, MPI_DOUBLE, MPI_MAX, comm_);
+        const scalar reach = vmax*runTime.deltaTValue() + largestCell_;
         exchange_->nearest_solid(solidFraction.cdata(), reach, solid);
     }
     // 2. whole DEM steps up to the fluid step
