@@ -59,6 +59,18 @@ void checkGravity
     }
 }
 
+//- Where the particles of the records are, for the exchange
+std::vector<::meltdem::coupling::ParticleShape> shapesOf
+(
+    const std::vector<::meltdem::coupling::ExchangeRecord>& records
+)
+{
+    std::vector<::meltdem::coupling::ParticleShape> shapes;
+    shapes.reserve(records.size());
+    for (const auto& r : records) shapes.push_back({r.x, r.radius, r.id});
+    return shapes;
+}
+
 } // End anonymous namespace
 
 
@@ -280,10 +292,8 @@ void Foam::meltdem::particleCoupling::checkDomains() const
     // every particle must start inside the mesh
     std::vector<mc::ExchangeRecord> now;
     lammps_->local_particles(now);
-    std::vector<mc::ParticleShape> shapes;
-    for (const auto& r : now) shapes.push_back({r.x, r.radius, r.id});
     mc::ParallelExchange probe(distMesh_, mc::DistributionModel::Centre, comm_);
-    probe.locate(shapes);
+    probe.locate(shapesOf(now));
     for (std::int64_t g = 0; g < probe.global_particles(); ++g)
     {
         if (!probe.global_inside(g))
@@ -305,10 +315,7 @@ void Foam::meltdem::particleCoupling::advance(Time& runTime, const fluidFields& 
     // 1. the fluid each particle sees, fixed over the step
     std::vector<mc::ExchangeRecord> start;
     lammps_->local_particles(start);
-    std::vector<mc::ParticleShape> shapes;
-    shapes.reserve(start.size());
-    for (const auto& r : start) shapes.push_back({r.x, r.radius, r.id});
-    relocate(shapes);
+    relocate(shapesOf(start));
 
     const scalarField cp(f.rhoCp.primitiveField()/f.rho.primitiveField());
     const mc::CellFluidFields cells
@@ -398,9 +405,7 @@ void Foam::meltdem::particleCoupling::advance(Time& runTime, const fluidFields& 
     }
 
     // 3./4. where each particle is now: inside -> deposit, outside -> outflow
-    shapes.clear();
-    for (const auto& r : records) shapes.push_back({r.x, r.radius, r.id});
-    relocate(shapes);
+    relocate(shapesOf(records));
     inside_.clear();
     lost_.clear();
     std::vector<mc::Amounts> amounts;
