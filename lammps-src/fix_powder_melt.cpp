@@ -394,7 +394,11 @@ void FixPowderMelt::end_of_step()
       mc::MeltStepResult lit;
       lit.h = melt[i][HSPEC], lit.m = m, lit.d = d;
       if (fluid.heat_source > 0.0) lit = mc::absorb_heat(mat, melt[i][HSPEC], m, d, fluid.heat_source * dt);
-      if (lit.fully_molten) {
+      if (!fluid.thermal) {
+        // the continuum has no energy equation: an isothermal particle (drag only)
+        r = lit;
+        r.heat = 0.0;
+      } else if (lit.fully_molten) {
         r = lit;
         r.heat = 0.0;
       } else {

@@ -114,6 +114,10 @@ Foam::meltdem::particleCoupling::particleCoupling
     exchangeSeconds_(0),
     lammpsSeconds_(0),
     warnedStep_(false),
+    thermal_
+    (
+        meltdemDict.subDict("physics").getOrDefault<bool>("energy", false)
+    ),
     laser_(nullptr),
     haveLocated_(false)
 {
@@ -228,14 +232,21 @@ Foam::meltdem::particleCoupling::~particleCoupling()
 void Foam::meltdem::particleCoupling::checkMaterial(const dictionary& meltdemDict) const
 {
     const mc::MeltMaterial& p = lammps_->material();
-    const bool energy =
-        meltdemDict.subDict("physics").getOrDefault<bool>("energy", false);
-    if (!energy)
+    if (!thermal_)
     {
-        // without it the continuum has no T, k, cp for the particles' heating (eq. 2.13)
-        // and nothing to receive the melt's enthalpy (eq. 2.9)
-        FatalIOErrorInFunction(meltdemDict.subDict("physics"))
-            << "switch 'particles' needs 'energy on'" << exit(FatalIOError);
+        // without the energy equation the continuum has no T, k, cp for the particles'
+        // heating (eq. 2.13) and no solid metal: the particles are isothermal and exchange
+        // momentum only (binder jetting: a liquid binder, no phase change)
+        if (lammps_->solid_metal_wall())
+        {
+            FatalIOErrorInFunction(meltdemDict.subDict("physics"))
+                << "fix " << lammps_->melt_fix_id() << " powder/melt keyword solid_metal "
+                << "needs 'energy on': without the energy equation there is no solid metal"
+                << exit(FatalIOError);
+        }
+        Info<< "Particles: energy off, isothermal particles (drag and buoyancy only: "
+            << "no heat exchange, no melting)" << endl;
+        return;
     }
     const dictionary& md = meltdemDict.subDict("metal");
     const scalar cp = md.get<scalar>("cp"), L = md.get<scalar>("L");
@@ -377,6 +388,7 @@ void Foam::meltdem::particleCoupling::advance(Time& runTime, const fluidFields& 
         fs = sampled[g].fluid;
         if (!solid.empty()) fs.solid = solid[g];
         if (!light.empty()) fs.heat_source = light[g];
+        fs.thermal = thermal_;
     }
     lammps_->set_fluid(std::move(fluid));
 

@@ -155,10 +155,11 @@ VARIANTS = {
         "physics particles on without the particles sub-dictionary",
         lambda c: edit(c, PROPS, re.compile(r"^particles\s*\{[^}]*\}\n", re.M), ""),
         ["sub-dictionary 'particles'"]),
-    "particles_without_energy": (
-        "physics particles on with energy off",
-        lambda c: edit(c, PROPS, "    energy on;", "    energy off;"),
-        ["'particles'", "'energy on'"]),
+    "solid_metal_without_energy": (
+        "isothermal particles (energy off) with the solid_metal keyword",
+        lambda c: (edit(c, PROPS, "    energy on;", "    energy off;"),
+                   edit(c, LMP, MELT_FIX, FIX_LINE + " solid_metal 1e9 0.5")),
+        ["solid_metal", "'energy on'"]),
     "lammps_error_in_run": (
         "a LAMMPS error inside the first DEM sub-cycles (fix print of 1/(step-3))",
         lambda c: edit(c, LMP, "thermo 200", 'thermo 200\nvariable bad equal 1/(step-3)\n'

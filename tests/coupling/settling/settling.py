@@ -8,6 +8,11 @@ in both codes. A steel grain d = 10 um (rho 7800, response time tau = rho d^2 / 
 2 ms. Coupled, the grain feels the local gas (which its drag pushes down a little: the
 Stokeslet at one cell's distance is ~1 % of v_t); standalone, a uniform gas at rest. The Stokes
 value rho_p g d^2 / (18 mu) (buoyancy 1.5e-4 of it) is printed as a third reference.
+
+--isothermal (coupling.settling.isothermal): the continuum without energy equation (physics
+energy off, the binder-jetting mode) and a grain 700 K hotter than the gas: the grain must
+settle the same way and exchange no heat at all (its enthalpy unchanged, not one joule handed
+over), where the thermal coupling would cool it.
 """
 import os
 import re
@@ -19,14 +24,16 @@ import numpy as np
 
 sys.path.insert(0, os.path.join(os.environ["MELTDEM_SOURCE_DIR"], "tests", "support"))
 sys.path.insert(0, os.path.join(os.environ["MELTDEM_SOURCE_DIR"], "tests", "coupling"))
-from meltdem_report import check_relative  # noqa: E402
+from meltdem_report import check_absolute, check_relative  # noqa: E402
 import coupledcase as cc  # noqa: E402
 import foamcase as fc  # noqa: E402
 
-TEST = "coupling.settling"
+ISOTHERMAL = "--isothermal" in sys.argv
+TEST = "coupling.settling" + (".isothermal" if ISOTHERMAL else "")
 D, RHO_P, RHO_G, MU_G, G = 10e-6, 7800.0, 1.2, 1.8e-5, 9.81
 T_END, AVERAGE = 15e-3, 2e-3
-PARTICLE = dict(d=D, rho=RHO_P, cp=500.0, Tm=5000.0, L=2.7e5, T0=300.0, y=3e-3, v=(0.0, 0.0, 0.0))
+PARTICLE = dict(d=D, rho=RHO_P, cp=500.0, Tm=5000.0, L=2.7e5, T0=1000.0 if ISOTHERMAL else 300.0, y=3e-3,
+                v=(0.0, 0.0, 0.0))
 
 def terminal(rows):
     last = rows[rows[:, 0] >= rows[-1, 0] - AVERAGE]
@@ -40,7 +47,8 @@ def main():
     cc.channel_case(case, "neighbours", PARTICLE,
                     channel=dict(lx=4e-3, ly=4e-3, lz=4e-3, h=0.5e-3, u=0.0),
                     gas=dict(rho=RHO_G, mu=MU_G, cp=1005.0, k=0.026, T=300.0),
-                    t_end=T_END, fluid_dt=2e-4, dem_dt=1e-5, g=(0.0, -G, 0.0), extra_lammps=cc.track_commands(10))
+                    t_end=T_END, fluid_dt=2e-4, dem_dt=1e-5, g=(0.0, -G, 0.0), extra_lammps=cc.track_commands(10),
+                    physics=dict(energy="off") if ISOTHERMAL else None)
     cc.run_solver(case)
     coupled = terminal(cc.track(os.path.join(case, "log.lammps")))
 
@@ -59,6 +67,14 @@ def main():
           f"Stokes {stokes:.6g} m/s")
     ok = check_relative(TEST, "terminal velocity, coupled vs standalone ambient [m/s]", coupled, standalone, 0.02)
     ok &= check_relative(TEST, "terminal velocity, standalone vs Stokes [m/s]", standalone, stokes, 0.02)
+    if ISOTHERMAL:
+        pc = cc.particles_csv(case)
+        h0 = PARTICLE["cp"] * PARTICLE["T0"] * (PARTICLE["rho"] * np.pi * D**3 / 6)
+        print(f"{TEST}: particle enthalpy {pc['particle_enthalpy'][-1]!r} J (initial {h0!r}), heat absorbed "
+              f"{np.abs(pc['heat_absorbed']).max()!r} J, enthalpy handed over {np.abs(pc['enthalpy_handed_over']).max()!r} J")
+        ok &= check_relative(TEST, "isothermal grain: enthalpy at the end vs m cp T0 [J]", pc["particle_enthalpy"][-1], h0, 1e-12)
+        ok &= check_absolute(TEST, "isothermal grain: largest heat absorbed in a step [J]",
+                             np.abs(pc["heat_absorbed"]).max(), 0.0, 0.0)
     return fc.finish(ok, work, keep)
 
 

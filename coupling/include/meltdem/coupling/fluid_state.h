@@ -16,6 +16,8 @@ struct FluidState {
   double U[3] = {0.0, 0.0, 0.0};  // velocity [m/s]
   SolidSurface solid;             // nearest solid metal of the continuum (if any)
   double heat_source = 0.0;       // power from outside the fluid (laser) absorbed [W]
+  bool thermal = true;            // false: the continuum solves no energy equation, so the
+                                  // particle is isothermal (drag only: no heat, no melting)
 };
 
 class FluidStateProvider {
