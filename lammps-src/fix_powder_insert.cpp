@@ -114,6 +114,9 @@ FixPowderInsert::FixPowderInsert(LAMMPS *lmp, int narg, char **arg) :
   maxattempt = 100;
   gap = 0.0;
   insert_every = 1;
+  stall_limit = 1000;
+  stall_error = 0;
+  nstall = 0;
   int diamflag = 0, byvolume = 0;
 
   int iarg = 5;
@@ -238,6 +241,15 @@ FixPowderInsert::FixPowderInsert(LAMMPS *lmp, int narg, char **arg) :
       insert_every = utils::inumeric(FLERR, arg[iarg + 1], false, lmp);
       if (insert_every <= 0) error->all(FLERR, "Illegal fix powder/insert command: every must be > 0");
       iarg += 2;
+    } else if (kw == "stall") {
+      need(2, "stall");
+      stall_limit = utils::bnumeric(FLERR, arg[iarg + 1], false, lmp);
+      if (stall_limit <= 0) error->all(FLERR, "Illegal fix powder/insert command: stall tries must be > 0");
+      const std::string act = arg[iarg + 2];
+      if (act == "warn") stall_error = 0;
+      else if (act == "error") stall_error = 1;
+      else error->all(FLERR, fmt::format("Illegal fix powder/insert command: stall action {} (use warn or error)", act));
+      iarg += 3;
     } else {
       error->all(FLERR, fmt::format("Illegal fix powder/insert command: unknown keyword {}", kw));
     }
@@ -265,7 +277,7 @@ FixPowderInsert::FixPowderInsert(LAMMPS *lmp, int narg, char **arg) :
   last_insert_step = -1;
 
   vector_flag = 1;
-  size_vector = 6;
+  size_vector = 7;
   global_freq = 1;
   extvector = 0;
   restart_global = 1;
@@ -580,6 +592,20 @@ void FixPowderInsert::pre_exchange()
   }
   ninserted += nnew;
 
+  // a full region: the queue waits (no overlap is ever forced), but say so once per stall,
+  // naming the knobs; every rank took the same decisions, so every rank gets here
+  nstall = nnew ? 0 : nstall + 1;
+  if (nstall == stall_limit) {
+    const std::string msg = fmt::format(
+        "Fix powder/insert {}: no particle placed in {} insertion tries in a row ({} trial positions each), "
+        "{} particles pending (next d = {:.4g}): region {} has no room. The particles wait; to make progress "
+        "enlarge region {} or empty it faster, raise attempts, lower gap, or lower rate/massrate "
+        "(stall {} {})", id, nstall, maxattempt, pending.size(), pending.front(), idregion, idregion, stall_limit,
+        stall_error ? "error" : "warn");
+    if (stall_error) error->all(FLERR, msg);
+    if (comm->me == 0) error->warning(FLERR, msg);
+  }
+
   if (nnew) {
     atom->natoms += nnew;
     if (atom->natoms < 0) error->all(FLERR, "Too many total atoms");
@@ -607,6 +633,7 @@ double FixPowderInsert::compute_vector(int n)
       return m;
     }
     case 5: return ndrawn;
+    case 6: return nstall;
     default: return 0.0;
   }
 }

@@ -44,6 +44,10 @@ class FixPowderInsert : public Fix {
     for (double p : pending) d = p > d ? p : d;
     return d;
   }
+  // the state new particles get, for the coupling's ledger of fed and pending powder
+  const double *new_velocity() const { return vnew; }
+  bool sets_temperature() const { return tempflag != 0; }  // else fix powder/melt's temp
+  double new_temperature() const { return temp; }
 
  private:
   bigint ninsert;      // N requested
@@ -59,6 +63,9 @@ class FixPowderInsert : public Fix {
   int maxattempt;
   double gap;
   int insert_every;          // insertion tried at most every insert_every steps
+  bigint stall_limit;        // insertion tries in a row that place nothing before the stall message
+  int stall_error;           // 1: the stall message stops the run, 0: it is a warning
+  bigint nstall;             // insertion tries in a row that placed nothing (not in restarts)
 
   meltdem::coupling::SizeDistribution dist;
   meltdem::coupling::Rng64 rng_size;   // draws diameters only: same sequence on any #procs
