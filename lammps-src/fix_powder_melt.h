@@ -84,6 +84,8 @@ class FixPowderMelt : public Fix {
   bigint remove_particles(const std::vector<tagint> &tags);
   const meltdem::coupling::MeltMaterial &material() const { return mat; }
   bool solid_metal_wall() const { return solid_flag != 0; }
+  // the temperature new particles start at (keyword temp) [K]
+  double initial_temperature() const { return T0; }
   // the gravity the particles feel: the sum of the fix gravity vectors (as of the last init)
   const double *gravity(double *g) const;
 

@@ -1,6 +1,7 @@
 // LammpsCouplingHost: LAMMPS driven from meltdemFoam's time loop (see the header).
 #include "lammps_coupling_host.h"
 
+#include "fix_powder_insert.h"
 #include "fix_powder_melt.h"
 #include "lammps_version_guard.h"
 #include "meltdem_styles.h"
@@ -174,6 +175,24 @@ double LammpsCouplingHost::gravity(double g[3]) const
 const mc::MeltMaterial &LammpsCouplingHost::material() const { return impl_->melt->material(); }
 
 std::string LammpsCouplingHost::melt_fix_id() const { return impl_->melt->id; }
+
+void LammpsCouplingHost::insertion_store(coupling::Amounts &drawn, coupling::Amounts &pending) const
+{
+  drawn = pending = coupling::Amounts{};
+  const coupling::MeltMaterial &mat = material();
+  for (int i = 0; i < impl_->lmp->modify->nfix; i++) {
+    auto *ins = dynamic_cast<FixPowderInsert *>(impl_->lmp->modify->fix[i]);
+    if (!ins) continue;
+    // a new particle: fix powder/insert's temp if given, else fix powder/melt's initial one
+    const double T = ins->sets_temperature() ? ins->new_temperature() : impl_->melt->initial_temperature();
+    const double h = coupling::specific_enthalpy(mat, T);
+    const Eigen::Vector3d v(ins->new_velocity()[0], ins->new_velocity()[1], ins->new_velocity()[2]);
+    const double m_pending = ins->compute_vector(4), m_drawn = ins->compute_vector(3) + m_pending;
+    const coupling::Amounts a = coupling::make_amounts(m_drawn, m_drawn * h, m_drawn * v);
+    const coupling::Amounts b = coupling::make_amounts(m_pending, m_pending * h, m_pending * v);
+    for (int q = 0; q < coupling::kComponents; q++) drawn[q] += a[q], pending[q] += b[q];
+  }
+}
 
 bool LammpsCouplingHost::solid_metal_wall() const { return impl_->melt->solid_metal_wall(); }
 

@@ -51,6 +51,12 @@ class LammpsCouplingHost {
   // solid-metal surface near each particle)
   bool solid_metal_wall() const;
 
+  // powder of every fix powder/insert (the same on every rank), each as mass [kg], enthalpy
+  // [J] and momentum [kg m/s] in the state the particles are inserted with: drawn = all drawn
+  // so far (inserted + pending), pending = drawn but not yet placed. The coupling's ledger
+  // books the growth of drawn as feed and pending as the pending store.
+  void insertion_store(coupling::Amounts &drawn, coupling::Amounts &pending) const;
+
   // the particles of the melt group on this rank now (state only; exchange fields zero
   // unless an interval is open)
   void local_particles(std::vector<coupling::ExchangeRecord> &out) const;

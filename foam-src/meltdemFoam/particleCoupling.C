@@ -196,6 +196,9 @@ Foam::meltdem::particleCoupling::particleCoupling
     checkMaterial(meltdemDict);
     checkDomains();
     checkGravity(mesh, *lammps_, dict_);
+    // powder drawn before the coupling starts is already in the particles or pending
+    mc::Amounts pendingNow;
+    lammps_->insertion_store(drawnBefore_, pendingNow);
 
     exchange_.reset(new mc::ParallelExchange(distMesh_, model_, comm_));
     ledger_.reset(new mc::ConservationLedger(comm_));
@@ -496,6 +499,19 @@ void Foam::meltdem::particleCoupling::book(const functionObjects::meltdemBalance
         L.book_lost(kept);
         L.book(mc::kLost, mc::make_amounts(r.mass_out, r.enthalpy_out, r.momentum_out));
     }
+    // powder from fix powder/insert: what was drawn this step is fed into the pending
+    // store, from which the inserted particles come (they then appear in the records)
+    mc::Amounts drawn, pending;
+    lammps_->insertion_store(drawn, pending);
+    if (Pstream::master())
+    {
+        for (int q = 0; q < mc::kComponents; ++q)
+        {
+            L.book(mc::kFeed, mc::Component(q), drawn[q] - drawnBefore_[q]);
+        }
+        L.book(mc::kPending, pending);
+    }
+    drawnBefore_ = drawn;
     if (Pstream::master())
     {
         L.book(mc::kContinuum, mc::make_amounts(b.M, b.H, Eigen::Vector3d(b.P.x(), b.P.y(), b.P.z())));

@@ -40,3 +40,8 @@ def check_absolute(test, what, measured, reference, tol, xfail=None):
 def check_at_most(test, what, measured, bound, xfail=None):
     ok = measured <= bound
     return report(test, what, float(measured), f"<= {bound:g}", "bound", ok, xfail)
+
+
+def check_at_least(test, what, measured, bound, xfail=None):
+    ok = measured >= bound
+    return report(test, what, float(measured), f">= {bound:g}", "bound", ok, xfail)
