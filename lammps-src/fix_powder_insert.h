@@ -48,10 +48,6 @@ class FixPowderInsert : public Fix {
   const double *new_velocity() const { return vnew; }
   bool sets_temperature() const { return tempflag != 0; }  // else fix powder/melt's temp
   double new_temperature() const { return temp; }
-  // the state new particles get, for the coupling's ledger of fed and pending powder
-  const double *new_velocity() const { return vnew; }
-  bool sets_temperature() const { return tempflag != 0; }  // else fix powder/melt's temp
-  double new_temperature() const { return temp; }
 
  private:
   bigint ninsert;      // N requested
