@@ -1,9 +1,11 @@
 #include "meltdem/coupling/particle_melting.h"
 
 #include "meltdem/coupling/heat_transfer.h"
+#include "meltdem/coupling/particle_forces.h"
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 namespace meltdem::coupling {
@@ -122,6 +124,34 @@ MeltStepResult absorb_heat(const MeltMaterial &mat, double h, double m, double d
   r.enthalpy_out = melted * (hm + mat.latent);
   // the identity m h + energy = m' h' + out, exactly up to rounding
   return r;
+}
+
+double particle_conductance(const FluidState &fluid, double d, const double v[3])
+{
+  if (!(d > 0.0)) throw std::invalid_argument("particle_conductance needs d > 0");
+  if (!(fluid.k > 0.0)) return 0.0;  // no fluid, no exchange
+  // without viscosity or heat capacity there is no Prandtl number: conduction only (Nu = 2)
+  if (!(fluid.mu > 0.0) || !(fluid.cp > 0.0)) return 2.0 * fluid.k * M_PI * d;
+  return ranz_marshall_k_nu(fluid, slip_reynolds(fluid, v, d)) * M_PI * d;
+}
+
+double heat_exchange_time(const double *C, const double *G, std::size_t n)
+{
+  double t = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < n; ++i)
+    if (G[i] > 0.0) t = std::min(t, C[i] / G[i]);
+  return t;
+}
+
+double temperature_overshoot(double lo, double hi, double Tmin, double Tmax, double tol, bool upper)
+{
+  if (!(hi >= lo) || !(tol >= 0.0)) throw std::invalid_argument("temperature_overshoot needs lo <= hi, tol >= 0");
+  // NaN is out of any range
+  if (std::isnan(Tmin) || std::isnan(Tmax)) return std::numeric_limits<double>::infinity();
+  const double allow = tol * (hi - lo);
+  double out = std::max(0.0, lo - allow - Tmin);
+  if (upper) out = std::max(out, Tmax - hi - allow);
+  return out;
 }
 
 }  // namespace meltdem::coupling

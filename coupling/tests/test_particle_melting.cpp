@@ -149,3 +149,71 @@ TEST(ParticleMelting, AbsorbHeatKeepsTheBalanceAndMeltsTheExcess)
   }
   EXPECT_THROW(absorb_heat(mat, h, m, d, -1.0), std::invalid_argument);
 }
+
+TEST(ParticleMelting, ConductanceIsKNuPiD)
+{
+  // at rest Nu = 2 (thesis gas, 600 um: 0.377 W/K); with slip Ranz-Marshall
+  FluidState gas;
+  gas.k = k_gas;
+  gas.rho = 1.6115;
+  gas.mu = 2.1e-5;
+  gas.cp = 5210.928;
+  const double rest[3] = {0.0, 0.0, 0.0};
+  expect_relative("G at rest = 2 k pi d [W/K]", particle_conductance(gas, d0, rest), 2.0 * k_gas * M_PI * d0, 1e-14);
+  const double v[3] = {0.0, 2.0, 0.0};
+  const double Re = gas.rho * 2.0 * d0 / gas.mu;
+  const double Pr = gas.cp * gas.mu / gas.k;
+  expect_relative("G at 2 m/s slip [W/K]", particle_conductance(gas, d0, v),
+                  gas.k * (2.0 + 0.6 * std::sqrt(Re) * std::cbrt(Pr)) * M_PI * d0, 1e-14);
+  FluidState none;
+  EXPECT_EQ(particle_conductance(none, d0, v), 0.0);
+  EXPECT_THROW(particle_conductance(gas, 0.0, v), std::invalid_argument);
+}
+
+TEST(ParticleMelting, HeatExchangeTimeIsTheWorstCell)
+{
+  const double C[4] = {1.0, 2.0, 3.0, 1e-9};
+  const double G[4] = {0.5, 4.0, 0.0, -1.0};
+  EXPECT_EQ(heat_exchange_time(C, G, 4), 0.5);  // min(1/0.5, 2/4); G <= 0 skipped
+  EXPECT_TRUE(std::isinf(heat_exchange_time(C, G + 2, 2)));
+}
+
+TEST(ParticleMelting, FrozenFluidStepOverdrawsASmallCell)
+{
+  // The thesis particle (m cp = 4.4e-5 J/K) in one 0.7 mm gas cell (C = 2.9e-6 J/K, 15x less),
+  // no melting (Tm huge), the cell's temperature frozen over each step and updated after it
+  // (the explicit coupling). The cell passes below the particle's starting temperature once
+  // (1 - exp(-dt/tau_p)) r > 1, r = m cp / C, i.e. dt > tau_p ln(r / (r - 1)) ~ C / G.
+  const MeltMaterial hot{48.35, 1e9, 2.7e5};
+  const double C = 1.6115 * 5210.928 * std::pow(0.7e-3, 3), mcp = m0 * hot.cp, G = k_nu * M_PI * d0;
+  const double r = mcp / C, tau_p = mcp / G, t_cross = tau_p * std::log(r / (r - 1.0));
+  const double T_c0 = 1500.0, T_p0 = 300.0, T_eq = (C * T_c0 + mcp * T_p0) / (C + mcp);
+  expect_relative("crossing step vs C / G (C << m cp)", t_cross, C / G, 0.05);
+  for (double f : {0.5, 0.9, 1.1, 3.0}) {
+    double Tc = T_c0, h = hot.cp * T_p0, worst = 0.0;
+    for (int s = 0; s < 40; ++s) {
+      const double lo = std::min(Tc, h / hot.cp), hi = std::max(Tc, h / hot.cp);
+      const auto res = heat_melt_step(hot, h, m0, d0, k_nu, Tc, f * t_cross);
+      h = res.h;
+      Tc -= res.heat / C;
+      worst = std::max(worst, temperature_overshoot(lo, hi, Tc, Tc, 1e-2, true) / (hi - lo + 1e-300));
+    }
+    const std::string tag = "dt = " + std::to_string(f) + " x crossing step";
+    if (f < 1.0) {
+      expect_absolute(tag + ": overshoot / range over 40 steps", worst, 0.0, 0.0);
+      expect_relative(tag + ": cell relaxes to the equilibrium T [K]", Tc, T_eq, 1e-6);
+    } else {
+      EXPECT_GT(worst, 0.0) << tag << ": the cell must pass the particle's starting temperature";
+    }
+  }
+}
+
+TEST(ParticleMelting, TemperatureOvershoot)
+{
+  expect_absolute("inside", temperature_overshoot(300, 1500, 300, 1500, 0.0, true), 0.0, 0.0);
+  expect_absolute("below by 12 K, 1 % allowance", temperature_overshoot(300, 1500, 276, 1500, 0.01, true), 12.0, 1e-12);
+  expect_absolute("above by 5 K", temperature_overshoot(300, 1500, 300, 1505, 0.0, true), 5.0, 1e-12);
+  expect_absolute("above, upper bound off", temperature_overshoot(300, 1500, 300, 1505, 0.0, false), 0.0, 0.0);
+  EXPECT_TRUE(std::isinf(temperature_overshoot(300, 1500, NAN, 1500, 0.0, true)));
+  EXPECT_THROW(temperature_overshoot(1500, 300, 300, 1500, 0.0, true), std::invalid_argument);
+}

@@ -15,6 +15,8 @@
 
 #include "meltdem/coupling/fluid_state.h"
 
+#include <cstddef>
+
 namespace meltdem::coupling {
 
 struct MeltMaterial {
@@ -53,5 +55,26 @@ MeltStepResult absorb_heat(const MeltMaterial &mat, double h, double m, double d
 // One step of length dt with k_nu = k_f Nu [W/(m K)] and fluid temperature T_fluid.
 MeltStepResult heat_melt_step(const MeltMaterial &mat, double h, double m, double d, double k_nu,
                               double T_fluid, double dt);
+
+// --- The explicit exchange and the cells that pay for it (issue 6: a particle melting within
+// one step). Over a fluid step each particle heats with the fluid frozen; its cells lose that
+// heat. A cell of heat capacity C = rho cp V [J/K] feeding particles of conductance G [W/K]
+// loses G (Tf - Tp) dt, so on its own it passes the particles' temperature once dt > C / G and
+// the step after it swings back (an explicit instability: the balances stay closed, the
+// temperatures do not stay bounded). Conduction and flow resupply the cell, so C / G is the
+// time scale of the trouble, not a sharp limit; the continuum's temperature range after the
+// step is the test.
+
+// k_f Nu pi d [W/K]: a particle's convective conductance (eq. 2.13) at the slip velocity U_f - v
+double particle_conductance(const FluidState &fluid, double d, const double v[3]);
+
+// min over cells of C[i] / G[i] [s]; cells with G[i] <= 0 are skipped (+infinity if none)
+double heat_exchange_time(const double *C, const double *G, std::size_t n);
+
+// How far [K] the continuum's range [Tmin, Tmax] after a step lies outside [lo, hi], the range
+// of the continuum and the particles before it (no exchange can leave it: heat only flows from
+// hot to cold), beyond the numerical allowance tol (hi - lo); 0 when bounded. upper = false
+// skips the upper bound (a laser heats the continuum above both).
+double temperature_overshoot(double lo, double hi, double Tmin, double Tmax, double tol, bool upper);
 
 }  // namespace meltdem::coupling
