@@ -1,0 +1,20 @@
+#!/usr/bin/python3
+"""Powder bed fusion, line melting (SPH paper section 4.5): 960 x 320 x 240 um, 1500 grains
+(log-normal 16-32 um) on an 80 um steel substrate; a 312 W laser (d_w = 140 um) switched on
+160 um from one end, at rest until 0.05 ms, then 2 m/s over 640 um, off at 0.37 ms;
+meltdemFoam (melt pool, recoil, evaporation) hosting LAMMPS (the grains). The bed generator,
+case writer and analysis are shared with examples/pbf-point (pbf.py). See README.md.
+
+    scene.py build CASE [--ci | --full] [--dx 10e-6] [--dist overlap] [--grains N]
+    scene.py run CASE [--np N]
+    scene.py analyse CASE          (prints the table, writes CASE/summary.json)
+    scene.py all CASE [--ci | --full] [--np N]
+"""
+import os
+import sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "pbf-point"))
+import scene as point_scene  # noqa: E402
+
+if __name__ == "__main__":
+    point_scene.main("line", __doc__)
