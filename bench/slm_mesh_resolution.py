@@ -1,0 +1,113 @@
+#!/usr/bin/env python3
+"""SLM track (examples/slm-track, CI floor 0.3 x 0.3 mm, 0.2 mm of track) vs the cell size of the
+static uniform mesh: melted track width and depth, wall time, and the width error against the
+finest mesh and against the conduction estimate (Gaussian surface source of the same eta P, v and
+spot on bare SS304). Writes slm_mesh_resolution.md and .png next to this script.
+
+    /usr/bin/python3 bench/slm_mesh_resolution.py [--cells 37.5e-6,30e-6,20e-6,15e-6] [--work DIR]
+        [--np 1] [--bed bed.dump]
+
+All runs scan the same poured bed (poured once, or --bed). Run by hand (minutes per point).
+"""
+import argparse
+import json
+import os
+import sys
+import time
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+SRC = os.path.abspath(os.path.join(HERE, ".."))
+sys.path.insert(0, os.path.join(SRC, "examples", "slm-track"))
+import scene  # noqa: E402
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--cells", default="37.5e-6,30e-6,20e-6,15e-6")
+    ap.add_argument("--work", default="/tmp/meltdem-slm-mesh")
+    ap.add_argument("--np", type=int, default=1)
+    ap.add_argument("--bed")
+    ap.add_argument("--plot-only", action="store_true", help="re-plot from WORK/results.json")
+    a = ap.parse_args()
+    os.makedirs(a.work, exist_ok=True)
+    res_path = os.path.join(a.work, "results.json")
+    results = json.load(open(res_path)) if os.path.exists(res_path) else {}
+    if not a.plot_only:
+        bed = a.bed
+        if not bed:
+            bed = os.path.join(a.work, "bed", "bed.dump")
+            if not os.path.exists(bed):
+                v = dict(scene.VARIANTS["ci"], np=a.np)
+                scene.pour_bed(a.work, v)
+        for h in [float(c) for c in a.cells.split(",")]:
+            case = os.path.join(a.work, f"cell_{h * 1e6:g}um")
+            t = time.time()
+            scene.build(case, "ci", cell=h, bed=os.path.abspath(bed))
+            try:
+                scene.run(case, a.np)
+                s = scene.analyse(case)
+                s["status"] = "ok"
+            except Exception as e:  # a run that fails is a point of the table too
+                s = dict(status=f"failed: {str(e).splitlines()[0][:120]}", wall_s=time.time() - t, cell_m=h)
+            results[f"{h:.4g}"] = s
+            json.dump(results, open(res_path, "w"), indent=1)
+    write(results, a.np)
+
+
+def write(results, np_):
+    import numpy as np
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    rows = sorted(results.values(), key=lambda s: -s["cell_m"])
+    ok = [s for s in rows if s.get("status") == "ok"]
+    finest = min(ok, key=lambda s: s["cell_m"]) if ok else None
+    lines = ["# SLM track: mesh resolution vs track width", "",
+             "`bench/slm_mesh_resolution.py` (examples/slm-track CI floor 0.3 x 0.3 mm, 153 grains, "
+             "0.2 mm of track at 0.5 m/s, 100 W, 0.1 mm spot, eta 0.5; overlap distribution; "
+             f"{np_} rank(s), shared 2-core machine). Width and depth of the region whose metal liquid "
+             "fraction reached 1/2 (median over the x-slices of the middle of the track). Reference: the "
+             "conduction-only melt width of the same eta P, v and Gaussian spot on bare SS304 "
+             f"({ok[0]['gaussian_width_m'] * 1e6:.1f} um; Rosenthal point source "
+             f"{ok[0]['rosenthal_width_m'] * 1e6:.1f} um)." if ok else "", "",
+             "| cell [um] | cells | spot radius / cell | width [um] | depth [um] | bead height [um] | "
+             "width error vs finest | width error vs conduction estimate | wall [s] | status |",
+             "|---|---|---|---|---|---|---|---|---|---|"]
+    for s in rows:
+        h = s["cell_m"]
+        if s.get("status") != "ok":
+            lines.append(f"| {h * 1e6:g} | | {50e-6 / h:.2f} | | | | | | {s['wall_s']:.0f} | {s['status']} |")
+            continue
+        ef = (s["track_width_m"] - finest["track_width_m"]) / finest["track_width_m"]
+        ea = (s["track_width_m"] - s["gaussian_width_m"]) / s["gaussian_width_m"]
+        lines.append(f"| {h * 1e6:g} | {s['cells']} | {50e-6 / h:.2f} | {s['track_width_m'] * 1e6:.1f} | "
+                     f"{s['track_depth_m'] * 1e6:.1f} | {s['bead_height_m'] * 1e6:.1f} | "
+                     f"{ef * 100:+.1f} % | {ea * 100:+.1f} % | {s['wall_s']:.0f} | ok |")
+    open(os.path.join(HERE, "slm_mesh_resolution.md"), "w").write("\n".join(lines) + "\n")
+    print("\n".join(lines))
+    if not ok:
+        return
+    fig, ax = plt.subplots(1, 2, figsize=(10, 4))
+    wall = np.array([s["wall_s"] for s in ok])
+    ea = np.array([abs(s["track_width_m"] - s["gaussian_width_m"]) / s["gaussian_width_m"] for s in ok])
+    ef = np.array([abs(s["track_width_m"] - finest["track_width_m"]) / finest["track_width_m"] for s in ok])
+    for w, e1, e2, s in zip(wall, ea, ef, ok):
+        ax[0].annotate(f"{s['cell_m'] * 1e6:g} um", (w, max(e1, 1e-3)))
+    ax[0].loglog(wall, np.maximum(ea, 1e-3), "o-", label="vs conduction estimate")
+    ax[0].loglog(wall[ef > 0], ef[ef > 0], "s--", label="vs finest mesh")
+    ax[0].set_xlabel("wall time [s]")
+    ax[0].set_ylabel("|track width error|")
+    ax[0].legend()
+    hs = np.array([s["cell_m"] for s in ok]) * 1e6
+    ax[1].plot(hs, [s["track_width_m"] * 1e6 for s in ok], "o-", label="width")
+    ax[1].plot(hs, [s["track_depth_m"] * 1e6 for s in ok], "s-", label="depth")
+    ax[1].axhline(ok[0]["gaussian_width_m"] * 1e6, color="k", ls=":", label="conduction width")
+    ax[1].set_xlabel("cell size [um]")
+    ax[1].set_ylabel("[um]")
+    ax[1].legend()
+    fig.tight_layout()
+    fig.savefig(os.path.join(HERE, "slm_mesh_resolution.png"), dpi=110)
+
+
+if __name__ == "__main__":
+    main()
