@@ -148,7 +148,8 @@ double temperature_overshoot(double lo, double hi, double Tmin, double Tmax, dou
   if (!(hi >= lo) || !(tol >= 0.0)) throw std::invalid_argument("temperature_overshoot needs lo <= hi, tol >= 0");
   // NaN is out of any range
   if (std::isnan(Tmin) || std::isnan(Tmax)) return std::numeric_limits<double>::infinity();
-  const double allow = tol * (hi - lo);
+  // plus 1e-9 of the level: round-off and solver tolerance where the range is empty (isothermal)
+  const double allow = tol * (hi - lo) + 1e-9 * std::max(std::fabs(lo), std::fabs(hi));
   double out = std::max(0.0, lo - allow - Tmin);
   if (upper) out = std::max(out, Tmax - hi - allow);
   return out;

@@ -73,7 +73,8 @@ double heat_exchange_time(const double *C, const double *G, std::size_t n);
 
 // How far [K] the continuum's range [Tmin, Tmax] after a step lies outside [lo, hi], the range
 // of the continuum and the particles before it (no exchange can leave it: heat only flows from
-// hot to cold), beyond the numerical allowance tol (hi - lo); 0 when bounded. upper = false
+// hot to cold), beyond the numerical allowance tol (hi - lo) + 1e-9 max(|lo|, |hi|); 0 when
+// bounded. upper = false
 // skips the upper bound (a laser heats the continuum above both).
 double temperature_overshoot(double lo, double hi, double Tmin, double Tmax, double tol, bool upper);
 
