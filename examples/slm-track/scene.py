@@ -58,9 +58,9 @@ G = 9.81                                            # the bed was poured at 10 g
 
 VARIANTS = {
     # floor Lx x Lz, gas top, substrate thickness, cell, track start/end (x), cool-down, write interval
-    "ci": dict(lx=0.3e-3, lz=0.3e-3, top=150e-6, sub=60e-6, cell=30e-6, x0=50e-6, x1=250e-6,
+    "ci": dict(lx=0.3e-3, lz=0.3e-3, top=150e-6, sub=90e-6, cell=30e-6, x0=50e-6, x1=250e-6,
                cool=40e-6, write=10e-6),
-    "full": dict(lx=0.9e-3, lz=0.9e-3, top=210e-6, sub=90e-6, cell=15e-6, x0=100e-6, x1=800e-6,
+    "full": dict(lx=0.9e-3, lz=0.9e-3, top=210e-6, sub=90e-6, cell=30e-6, x0=100e-6, x1=800e-6,
                  cool=100e-6, write=20e-6),
 }
 
@@ -103,20 +103,20 @@ def read_dumps(path):
     """All snapshots of a LAMMPS custom dump with 'dump_modify time yes': list of (time, columns)."""
     out = []
     with open(path) as f:
-        txt = f.read()
-    for block in txt.split("ITEM: TIMESTEP")[1:]:
-        lines = block.strip().splitlines()
-        t = None
-        for k, line in enumerate(lines):
-            if line.startswith("ITEM: TIME"):
-                t = float(lines[k + 1])
-            if line.startswith("ITEM: NUMBER OF ATOMS"):
-                n = int(lines[k + 1])
-            if line.startswith("ITEM: ATOMS"):
-                names = line.split()[2:]
-                rows = np.array([[float(v) for v in r.split()] for r in lines[k + 1:k + 1 + n]]).reshape(n, len(names))
-                out.append((t, {names[c]: rows[:, c] for c in range(len(names))}))
-                break
+        lines = f.read().splitlines()
+    k, t = 0, None
+    while k < len(lines):
+        line = lines[k]
+        if line.startswith("ITEM: TIME") and not line.startswith("ITEM: TIMESTEP"):
+            t = float(lines[k + 1])
+        elif line.startswith("ITEM: NUMBER OF ATOMS"):
+            n = int(lines[k + 1])
+        elif line.startswith("ITEM: ATOMS"):
+            names = line.split()[2:]
+            rows = np.array([[float(v) for v in r.split()] for r in lines[k + 1:k + 1 + n]]).reshape(n, len(names))
+            out.append((t, {names[c]: rows[:, c] for c in range(len(names))}))
+            k += n
+        k += 1
     return out
 
 
@@ -157,7 +157,6 @@ def write_data(case, dump, v):
 
 def lammps_input(case, v, dump_every):
     e_wall = e_of_alpha(ALPHA_W)
-    estar_wall = E_YOUNG / (2 * (1 - NU ** 2))  # particle-wall of the same steel (fix wall/gran/powder)
     w = f"hertz/material {E_YOUNG!r} 0.5 {NU!r} damping tsuji/alpha {ALPHA_W!r} tangential mindlin NULL 1.0 {MU_FRICTION!r}"
     with open(os.path.join(case, "in.particles"), "w") as f:
         f.write(f"""# SLM track (thesis 4.2.2, table 4.6): the generated powder bed, coupled to meltdemFoam
@@ -176,14 +175,14 @@ pair_coeff      * * hertz/material {E_YOUNG!r} 0.5 {NU!r} damping tsuji/alpha {A
                 tangential mindlin NULL 1.0 {MU_FRICTION!r}
 fix             integrate all nve/sphere
 fix             gravity all gravity {G!r} vector 0 -1 0
-# side walls of the powder box (the mesh's side walls); the floor is the continuum's solid
-# substrate (solid_metal below): E* of the same steel, e = e(alpha {ALPHA_W}) = {e_wall:.4f}
+# side walls of the powder box (the mesh's side walls) and the substrate top y = 0 as a granular
+# wall of the same steel (alpha {ALPHA_W}, e = {e_wall:.4f}); see README for why not solid_metal
 fix             sidex all wall/gran/powder granular {w} xplane 0.0 {v['lx']!r}
 fix             sidez all wall/gran/powder granular {w} zplane 0.0 {v['lz']!r}
+fix             floor all wall/gran/powder granular {w} yplane 0.0 NULL
 # fixed DEM step (not fix powder/dt): a melting grain shrinks and its Hertz time with it, and
 # the coupled sub-cycle count is fixed from the step at the start of a fluid step (see README)
-fix             melt all powder/melt cp {CP!r} Tmelt {TMELT!r} latent {LATENT!r} temp {T0!r} &
-                solid_metal {estar_wall!r} {e_wall!r}
+fix             melt all powder/melt cp {CP!r} Tmelt {TMELT!r} latent {LATENT!r} temp {T0!r}
 compute         ov all powder/overlap threshold 0.01
 compute         vmax all reduce max vy
 variable        t equal time
@@ -330,19 +329,23 @@ def crossing(f, c, level, h):
 
 
 def track_geometry(case, meta):
-    """Melted region = cells whose metal liquid fraction alpha*f_l reached 1/2 at some written
-    time; width = z extent of that region (widest cell row), depth = below the substrate top
-    on the track axis, height = final metal above the substrate top; medians over the x-slices
-    of the middle of the track (one spot diameter away from its start and end)."""
+    """Melted region = metal cells (alpha >= 1/2) whose temperature reached T_half (liquid fraction
+    1/2, the middle of the melting range) at some written time; its boundary is interpolated
+    linearly between cell centres on the peak temperature. Width = z extent (widest cell row),
+    depth = below the substrate top on the track axis, height = final metal above the substrate
+    top (column sum of alpha); medians over the x-slices of the middle of the track (one spot
+    diameter away from its start and end)."""
     nx, ny, nz = meta["n_cells"]
     h = meta["cell"]
+    n = nx * ny * nz
+    t_half = 0.5 * (TSOL + TLIQ)
     times = [d for d in fc.time_dirs(case) if float(d) > 0]
-    fmax = np.zeros((nz, ny, nx))
+    tmax = np.full((nz, ny, nx), T0)
     for d in times:
-        a = fc.read_internal(os.path.join(case, d, "alpha.metal")) * np.ones(nx * ny * nz)
-        fl = fc.read_internal(os.path.join(case, d, "liquidFraction")) * np.ones(nx * ny * nz)
-        fmax = np.maximum(fmax, (a * fl).reshape(nz, ny, nx))
-    alpha_end = (fc.read_internal(os.path.join(case, times[-1], "alpha.metal")) * np.ones(nx * ny * nz)).reshape(nz, ny, nx)
+        a = fc.read_internal(os.path.join(case, d, "alpha.metal")) * np.ones(n)
+        T = fc.read_internal(os.path.join(case, d, "T")) * np.ones(n)
+        tmax = np.maximum(tmax, np.where(a >= 0.5, T, T0).reshape(nz, ny, nx))
+    alpha_end = (fc.read_internal(os.path.join(case, times[-1], "alpha.metal")) * np.ones(n)).reshape(nz, ny, nx)
     xc = (np.arange(nx) + 0.5) * h
     yc = -meta["sub"] + (np.arange(ny) + 0.5) * h
     zc = (np.arange(nz) + 0.5) * h
@@ -351,27 +354,22 @@ def track_geometry(case, meta):
         mid = (xc >= meta["laser_x0_m"]) & (xc <= meta["laser_x1_m"])
     above = yc > 0
     widths, depths, heights = [], [], []
+    axis = np.interp(meta["track_z_m"], zc, np.arange(nz))  # fractional index of the track axis
+    k0 = int(np.floor(axis))
     for i in np.nonzero(mid)[0]:
         w = 0.0
         for j in range(ny):
-            cr = crossing(fmax[:, j, i], zc, 0.5, h)
+            cr = crossing(tmax[:, j, i], zc, t_half, h)
             if cr:
                 w = max(w, cr[1] - cr[0])
         widths.append(w)
-        axis = np.interp(meta["track_z_m"], zc, np.arange(nz))  # fractional index of the axis
-        k0 = int(np.floor(axis))
-        col = fmax[k0, :, i] * (1 - (axis - k0)) + fmax[min(k0 + 1, nz - 1), :, i] * (axis - k0)
-        below = np.nonzero((col >= 0.5) & ~above)[0]
-        if len(below):
-            j = below[0]
-            depth = -(yc[j] - h / 2) if j == 0 else -(yc[j - 1] + (0.5 - col[j - 1]) / (col[j] - col[j - 1]) * h)
-        else:
-            depth = 0.0
-        depths.append(max(depth, 0.0))
+        col = tmax[k0, :, i] * (1 - (axis - k0)) + tmax[min(k0 + 1, nz - 1), :, i] * (axis - k0)
+        cr = crossing(np.where(above, np.max(col), col), yc, t_half, h)  # from below up to the top
+        depths.append(max(-cr[0], 0.0) if cr else 0.0)
         heights.append(np.max(np.sum(alpha_end[:, above, i], axis=1) * h))
     return dict(track_width_m=float(np.median(widths)), track_depth_m=float(np.median(depths)),
-                bead_height_m=float(np.median(heights)), melted_cells=int(np.sum(fmax >= 0.5)),
-                snapshots=len(times), slices=int(mid.sum()))
+                bead_height_m=float(np.median(heights)), melted_cells=int(np.sum(tmax >= t_half)),
+                peak_temperature_K=float(np.max(tmax)), snapshots=len(times), slices=int(mid.sum()))
 
 
 def particle_motion(case, meta):
@@ -510,7 +508,7 @@ def analyse(case):
     json.dump(s, open(os.path.join(case, "summary.json"), "w"), indent=1)
     um = lambda x: f"{x * 1e6:.1f} um"  # noqa: E731
     rows = [
-        ("track width (max alpha f_l >= 1/2)", um(s["track_width_m"]),
+        ("track width (peak T >= T(f_l = 1/2))", um(s["track_width_m"]),
          f"Rosenthal {um(s['rosenthal_width_m'])}, Gaussian {um(s['gaussian_width_m'])}"),
         ("track depth below the substrate top", um(s["track_depth_m"]), ""),
         ("bead height above the substrate top", um(s["bead_height_m"]), "thesis expectation 30 um"),
