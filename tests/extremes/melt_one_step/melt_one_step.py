@@ -1,0 +1,123 @@
+#!/usr/bin/python3
+"""A particle melting within one fluid step, and a step that takes more heat than the cells
+hold (issue 6 extremes). Coupled meltdemFoam + LAMMPS, thesis 2.3 gas (rho 1.6115, cp 5210.9,
+k 100) at rest at 1500 K in a closed-off 2.1 x 4.2 x 2.1 mm box of 0.7 mm cells, one particle
+held at the centre (distribution centre), T0 = 300 K.
+
+Over a fluid step the particle heats with the fluid frozen (explicit coupling); the cell pays.
+  one_step: d = 200 um, rho 8020, cp 48.35, Tm 1000 K, L 2.7409e5 J/kg: heats (tau = 13 us) and
+            melts (d^2 law, 0.22 ms) within the first fluid step of 0.5 ms. The melt hands back
+            m (cp Tm + L), so the net heat taken is only m cp T0 < 0: bounded by construction.
+            Checks: all of it melts in step 1; heat taken = m (cp (Tm - T0) + L) and enthalpy
+            handed over = m (cp Tm + L) (1e-10); T stays in [T0, 1500] K; balances closed.
+  overdraw: d = 600 um, cp 500, Tm 3000 K (no melting): m cp = 4.5e-4 J/K against a cell of
+            C = rho cp h^3 = 2.9e-6 J/K. Heating with the gas frozen for 0.5 ms, it takes 0.19 J,
+            40x what the cell holds above 300 K: the cell falls to -151 K (without the guard, with the
+            particle on a cell face, T went -356, 2671, -1921, 5394 K in four steps, balances closed
+            to 2e-15 all the same: silent nonsense). The run must stop after
+            that first step, naming maxDeltaT, demStepsPerFluidStep and the distribution, and
+            give the cell's time scale C / G = rho cp h^3 / (2 k pi d) (Nu = 2, at rest).
+  knob:     the same with maxDeltaT = C / G / 2 (what the message asks for): runs 0.2 ms, T stays
+            in [300, 1500] K, balances closed.
+"""
+import math
+import os
+import re
+import sys
+import tempfile
+
+import numpy as np
+
+sys.path.insert(0, os.path.join(os.environ["MELTDEM_SOURCE_DIR"], "tests", "support"))
+sys.path.insert(0, os.path.join(os.environ["MELTDEM_SOURCE_DIR"], "tests", "coupling"))
+from meltdem_report import check_absolute, check_at_most, check_relative  # noqa: E402
+import coupledcase as cc  # noqa: E402
+import foamcase as fc  # noqa: E402
+
+T = "extremes.melt_one_step"
+GAS = cc.GAS
+H = 0.7e-3
+CHANNEL = dict(lx=3 * H, ly=6 * H, lz=3 * H, h=H, u=0.0)
+T0 = 300.0
+
+
+def particle(d, cp, Tm, L=2.7409e5):
+    return dict(d=d, rho=8020.0, cp=cp, Tm=Tm, L=L, T0=T0, y=3 * H + H / 2, held=True)
+
+
+def run(work, name, p, dt, t_end):
+    case = os.path.join(work, name)
+    cc.channel_case(case, "centre", p, channel=CHANNEL, t_end=t_end, fluid_dt=dt, max_co=0.5)
+    rc = cc.run_solver(case, check=False)
+    log = open(os.path.join(case, "log.meltdemFoam")).read()
+    Tr = np.array([[float(a), float(b)] for a, b in re.findall(r"T min/max = (\S+), (\S+)", log)])
+    return case, rc, log, Tr
+
+
+def no_nan(log):
+    return int(re.search(r"\bnan\b", log, re.IGNORECASE) is None)
+
+
+def main():
+    ok = True
+    work = tempfile.mkdtemp(prefix="meltdem-melt-one-step-")
+    keep = "--keep" in sys.argv
+
+    # one_step: melts completely within the first fluid step
+    p = particle(200e-6, 48.35, 1000.0)
+    m = p["rho"] * math.pi / 6 * p["d"] ** 3
+    G = 2 * GAS["k"] * math.pi * p["d"]
+    t_melt = (m * p["cp"] / G * math.log((GAS["T"] - T0) / (GAS["T"] - p["Tm"]))
+              + p["rho"] * p["L"] * p["d"] ** 2 / (4 * 2 * GAS["k"] * (GAS["T"] - p["Tm"])))
+    case, rc, log, Tr = run(work, "one_step", p, 1e-3, 2e-3)
+    pc, led = cc.particles_csv(case), cc.ledger(case)
+    print(f"{T}: one_step: analytic heating + melting time {t_melt:.3g} s at 1500 K, first fluid step "
+          f"{pc['dt'][0]:.3g} s")
+    ok &= check_absolute(T, "one_step: exit code", rc, 0, 0)
+    ok &= check_absolute(T, "one_step: no NaN in the output", no_nan(log), 1, 0)
+    ok &= check_at_most(T, "one_step: analytic melting time / first fluid step (melts within it)",
+                        t_melt / pc["dt"][0], 1.0)
+    ok &= check_relative(T, "one_step: mass melted in the first step [kg]", pc["mass_melted"][0], m, 1e-12)
+    ok &= check_absolute(T, "one_step: solid mass left after the first step [kg]", pc["solid_mass"][0], 0, 0)
+    ok &= check_relative(T, "one_step: heat taken in step 1 vs m (cp (Tm - T0) + L) [J]", pc["heat_absorbed"][0],
+                         m * (p["cp"] * (p["Tm"] - T0) + p["L"]), 1e-10)
+    ok &= check_relative(T, "one_step: enthalpy handed over vs m (cp Tm + L) [J]", pc["enthalpy_handed_over"][0],
+                         m * (p["cp"] * p["Tm"] + p["L"]), 1e-10)
+    ok &= check_at_most(T, "one_step: T0 - lowest continuum T [K] (bounded below)", T0 - Tr[:, 0].min(), 0.0)
+    ok &= check_at_most(T, "one_step: highest continuum T - 1500 K [K] (bounded above)", Tr[:, 1].max() - GAS["T"],
+                        1e-6)
+    ok &= cc.check_balances(T + " one_step", led)
+
+    # overdraw: the cold particle takes more than the cell holds -> stop after step 1
+    p = particle(600e-6, 500.0, 3000.0)
+    C = GAS["rho"] * GAS["cp"] * H ** 3
+    G = 2 * GAS["k"] * math.pi * p["d"]
+    case, rc, log, Tr = run(work, "overdraw", p, 1e-3, 2e-3)
+    msg = re.search(r"the continuum temperature left .*", log)
+    print(f"{T}: overdraw: {msg.group(0) if msg else 'no message'}")
+    ok &= check_absolute(T, "overdraw: exit code is nonzero (stopped)", int(rc != 0), 1, 0)
+    ok &= check_absolute(T, "overdraw: no NaN before the stop", no_nan(log), 1, 0)
+    ok &= check_absolute(T, "overdraw: fluid steps done before the stop", len(Tr), 1, 0)
+    named = msg and all(k in msg.group(0) for k in ("maxDeltaT", "demStepsPerFluidStep", "distribution overlap"))
+    ok &= check_absolute(T, "overdraw: the message names maxDeltaT, demStepsPerFluidStep, distribution",
+                         int(bool(named)), 1, 0)
+    given = re.search(r"conductance is (\S+) s", msg.group(0)) if msg else None
+    ok &= check_relative(T, "overdraw: time scale in the message vs rho cp h^3 / (2 k pi d) [s]",
+                         float(given.group(1)) if given else math.nan, C / G, 1e-9)
+
+    # knob: maxDeltaT = C / G / 2 as the message asks: bounded and closed
+    case, rc, log, Tr = run(work, "knob", p, 0.5 * C / G, 2e-4)
+    led = cc.ledger(case)
+    pc = cc.particles_csv(case)
+    print(f"{T}: knob: {len(Tr)} fluid steps of <= {0.5 * C / G:.3g} s; particle heat taken "
+          f"{np.sum(pc['heat_absorbed']):.4g} J; T min/max {Tr[:, 0].min():.5g} / {Tr[:, 1].max():.6g} K")
+    ok &= check_absolute(T, "knob: exit code", rc, 0, 0)
+    ok &= check_absolute(T, "knob: no NaN in the output", no_nan(log), 1, 0)
+    ok &= check_at_most(T, "knob: T0 - lowest continuum T [K] (bounded below)", T0 - Tr[:, 0].min(), 0.0)
+    ok &= check_at_most(T, "knob: highest continuum T - 1500 K [K]", Tr[:, 1].max() - GAS["T"], 1e-6)
+    ok &= cc.check_balances(T + " knob", led)
+    return fc.finish(ok, work, keep)
+
+
+if __name__ == "__main__":
+    sys.exit(main())
