@@ -32,7 +32,7 @@ import scene  # noqa: E402
 
 TEST = "scenes.lmd-track"
 CELL_MM = scene.VARIANTS["ci"]["dx"] * 1e3
-SHORT = "CI track (1.2 mm, 0.72 s, 0.5 mm cells) ends before the pool reaches its steady size"
+SHORT = "CI: 0.5 mm cells (2 per penetration depth) and a 2 mm track"
 
 
 def main():
