@@ -86,7 +86,7 @@ def main():
     ok &= check_at_most(T, "one_step: T0 - lowest continuum T [K] (bounded below)", T0 - Tr[:, 0].min(), 0.0)
     ok &= check_at_most(T, "one_step: highest continuum T - 1500 K [K] (bounded above)", Tr[:, 1].max() - GAS["T"],
                         1e-6)
-    ok &= cc.check_balances(T + " one_step", led)
+    ok &= cc.check_balances(T + ".one_step", led)
 
     # overdraw: the cold particle takes more than the cell holds -> stop after step 1
     p = particle(600e-6, 500.0, 3000.0)
@@ -115,7 +115,7 @@ def main():
     ok &= check_absolute(T, "knob: no NaN in the output", no_nan(log), 1, 0)
     ok &= check_at_most(T, "knob: T0 - lowest continuum T [K] (bounded below)", T0 - Tr[:, 0].min(), 0.0)
     ok &= check_at_most(T, "knob: highest continuum T - 1500 K [K]", Tr[:, 1].max() - GAS["T"], 1e-6)
-    ok &= cc.check_balances(T + " knob", led)
+    ok &= cc.check_balances(T + ".knob", led)
     return fc.finish(ok, work, keep)
 
 
