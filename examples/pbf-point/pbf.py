@@ -43,6 +43,7 @@ ETA, T_BOIL = 0.5, 3000.0
 # at rest and ~ 0.08 R head-on at 10 m/s, and a DEM step 16x longer than 200 GPa's.
 E_DEM, NU_DEM, E_REST = 2.0e9, 0.3, 0.3
 RHO_P = M["rho"]
+DT_DEM = 2.0e-8
 # Gas heat capacity. The paper's gas (table 3: rho 7.43, cp 10) holds 1e-5 of the metal's heat
 # per volume. The coupling hands a grain's convective heat to its cells with the volume weights
 # of the distribution, while the grain's heat flux uses the weight-averaged T and k: a grain half
@@ -211,7 +212,9 @@ fix             gravity all gravity 9.81 vector 0 -1 0
 fix             wx all wall/gran/powder granular hertz/material {E_DEM!r} {E_REST!r} {NU_DEM!r} damping tsuji tangential linear_nohistory 0 0 xplane 0 {lx!r}
 fix             wz all wall/gran/powder granular hertz/material {E_DEM!r} {E_REST!r} {NU_DEM!r} damping tsuji tangential linear_nohistory 0 0 zplane 0 {lz!r}
 fix             wy all wall/gran/powder granular hertz/material {E_DEM!r} {E_REST!r} {NU_DEM!r} damping tsuji tangential linear_nohistory 0 0 yplane 0 {ly!r}
-fix             dt all powder/dt steps 10 max 2e-8
+# fixed DEM step: 1/10 of the Hertz contact time of two 16 um grains at 10 m/s (1.9e-7 s);
+# fix powder/dt would follow the melting grains' shrinking radii down to 1e-10 s
+timestep        {DT_DEM!r}
 # the substrate and the solidified track are continuum metal: solid_metal makes them a wall
 fix             melt all powder/melt cp {M['cp']!r} Tmelt {T_MELT + DT_MUSHY / 2!r} latent {LATENT!r} temp {T0!r} solid_metal {estar_wall!r} {E_REST!r}
 compute         ke all ke
@@ -395,6 +398,8 @@ def melt_pool(case, cfg):
     out = dict(depth=(0.0, 0.0), width=(0.0, 0.0), length=(0.0, 0.0), keyhole=(0.0, 0.0),
                peak_T=(0.0, 0.0), pool_volume=(0.0, 0.0))
     series = []
+    depth_x = np.zeros(nx)          # deepest molten point per x (over z and time)
+    surface_x = None                # metal surface height on the track centre line, last time
     for d in fc.time_dirs(case):
         fT, fa = os.path.join(case, d, "T"), os.path.join(case, d, "alpha.metal")
         if not (os.path.exists(fT) and os.path.exists(fa)) or float(d) == 0.0:
@@ -417,6 +422,7 @@ def melt_pool(case, cfg):
             if j > 0 and T[k, j - 1, i] < T_MELT:
                 y = yc[j - 1] + (T_MELT - T[k, j - 1, i]) / (T[k, j, i] - T[k, j - 1, i]) * h
             depth = max(depth, sub - y)
+            depth_x[i] = max(depth_x[i], sub - y)
         # width (z) and length (x) of the molten region, cell-face extents
         if molten.any():
             ks = np.nonzero(molten.any(axis=(1, 2)))[0]
@@ -439,6 +445,14 @@ def melt_pool(case, cfg):
             y = 0.0 if j == 0 else yc[j - 1] + (col[j - 1] - 0.5) / (col[j - 1] - col[j]) * h
             low = min(low, y)
         keyhole = sub - low if np.isfinite(low) else 0.0
+        kc = nz // 2
+        surface_x = []
+        for i in range(nx):
+            col = 0.5 * (a[kc, :, i] + a[kc - 1, :, i]) if nz % 2 == 0 else a[kc, :, i]
+            js = np.nonzero(col < 0.5)[0]
+            j = js[0] if len(js) else ny
+            surface_x.append(0.0 if j == 0 else (yc[j - 1] + (col[j - 1] - 0.5) / (col[j - 1] - col[j]) * h
+                                                 if j < ny else ny * h))
         vol = float(np.sum(a * (T >= T_MELT))) * h ** 3
         peak = float(np.max(np.where(a >= 0.5, T, 0.0)))
         series.append(dict(time_s=t, depth_m=depth, width_m=width, length_m=length, keyhole_m=keyhole,
@@ -447,6 +461,9 @@ def melt_pool(case, cfg):
                          ("peak_T", peak), ("pool_volume", vol)):
             if val > out[key][0]:
                 out[key] = (val, t)
+    out["depth_x"] = depth_x
+    out["surface_x"] = np.array(surface_x) if surface_x is not None else np.zeros(nx)
+    out["x"] = xc
     return out, series
 
 
@@ -484,7 +501,7 @@ def summary(case):
     p = cc.particles_csv(case)
     s["simulated_time_s"] = float(led["time"][-1])
     s["end_time_s"] = cfg["t_end"]
-    s["completed"] = bool(led["time"][-1] >= cfg["t_end"] * (1 - 1e-6))
+    s["completed"] = bool(led["time"][-1] >= cfg["t_end"] - led["dt"][-1])   # OpenFOAM stops within dt/2
     s["fluid_steps"] = int(len(led))
     s["dem_steps"] = int(np.sum(p["dem_steps"]))
     ws = os.path.join(case, "wall_seconds")
@@ -498,6 +515,20 @@ def summary(case):
           (f"keyhole_depth_max_{unit}" if k == "keyhole" else "peak_metal_T_K")] = pool[k][0] * scale
         s[f"{k}_time_s"] = pool[k][1]
     s.update(grains(case, cfg))
+    if cfg["v"]:
+        # the moving pool: widest written pool in the second half of the travel (Eagar-Tsai is
+        # the quasi-steady pool), and the profile along the track
+        late = [r for r in series if cfg["t_move"] + 0.5 * (cfg["t_off"] - cfg["t_move"]) <= r["time_s"] <= cfg["t_off"]]
+        s["melt_pool_width_moving_um"] = max((r["width_m"] for r in late), default=0.0) * 1e6
+        s["melt_pool_depth_moving_um"] = max((r["depth_m"] for r in late), default=0.0) * 1e6
+        s["eagar_tsai_width_um"] = eagar_tsai_width(ETA * cfg["power"], cfg["v"], cfg["rw"] / 2) * 1e6
+        x_end = beam_x(cfg, cfg["t_off"])
+        i0 = int(np.argmin(abs(pool["x"] - cfg["x0"])))
+        i1 = int(np.argmin(abs(pool["x"] - x_end)))
+        s["depth_at_start_um"] = float(pool["depth_x"][i0]) * 1e6
+        s["depth_at_end_um"] = float(pool["depth_x"][i1]) * 1e6
+        s["final_surface_at_start_um"] = float(pool["surface_x"][i0] - cfg["sub"]) * 1e6
+        s["final_surface_at_end_um"] = float(pool["surface_x"][i1] - cfg["sub"]) * 1e6
     m0 = float(led["mass_particles"][0] + p["mass_melted"][0]) if len(p) else 0.0
     s["grain_mass_initial_kg"] = m0
     s["grain_mass_molten_kg"] = float(np.sum(p["mass_melted"]))
@@ -519,7 +550,8 @@ def summary(case):
     with open(os.path.join(case, "summary.json"), "w") as f:
         json.dump(s, f, indent=1)
     with open(os.path.join(case, "melt_pool_series.json"), "w") as f:
-        json.dump(series, f, indent=1)
+        json.dump({"series": series, "x_m": pool["x"].tolist(), "max_depth_along_x_m": pool["depth_x"].tolist(),
+                   "final_surface_height_along_x_m": pool["surface_x"].tolist()}, f, indent=1)
     return s
 
 

@@ -1,0 +1,65 @@
+#!/usr/bin/env python3
+"""CI variant of examples/pbf-point (SPH paper section 4.5, point melting), coupled
+meltdemFoam + LAMMPS: 200 log-normal grains (16-32 um, poured by DEM) on a 40 um steel
+substrate, 200 x 160 x 200 um of 10 um cells (overlap distribution), 312 W laser (eta 0.5,
+d_w = 140 um) fixed at the centre, on for 40 us, off until 60 us; recoil and evaporation on.
+
+References: the paper has only qualitative statements for this case (a keyhole forms when the
+peak temperature exceeds boiling; grains are ejected from the melt-pool edge); exact ones:
+absorbed laser energy = eta P t_on (continuum + grains), grain mass = remaining + molten + lost,
+the ledger's per-step balances.
+"""
+import os
+import sys
+import tempfile
+
+SRC = os.environ["MELTDEM_SOURCE_DIR"]
+sys.path.insert(0, os.path.join(SRC, "tests", "support"))
+sys.path.insert(0, os.path.join(SRC, "examples", "pbf-point"))
+from meltdem_report import check_at_least, check_at_most, check_relative  # noqa: E402
+import pbf  # noqa: E402
+import coupledcase as cc  # noqa: E402
+import foamcase as fc  # noqa: E402
+
+TEST = "scenes.pbf_point"
+
+
+def common_checks(test, case, s):
+    """The checks both PBF scenes share; returns whether all passed."""
+    ok = check_relative(test, "simulated time [s] vs end time (OpenFOAM stops within half a step)",
+                        s["simulated_time_s"], s["end_time_s"], 0.01)
+    ok &= check_relative(test, "laser energy absorbed by continuum + grains vs eta P t_on [J]",
+                         s["laser_energy_absorbed_J"], s["laser_energy_eta_P_t_J"], 1e-6)
+    ok &= check_at_most(test, "|grain mass remaining + molten + lost - initial| / initial",
+                        abs(s["grain_mass_balance_rel"]), 1e-12)
+    ok &= cc.check_balances(test, cc.ledger(case), mass=1e-10, energy=1e-6)
+    ok &= check_at_most(test, "|cumulative system metal mass error| (grains + continuum + boundaries)",
+                        abs(s["cumulative_system_mass_error"]), 1e-9)
+    ok &= check_at_least(test, "lowest temperature [K] (no undershoot below the 500 K start)",
+                         s["T_min_K"], 450.0)
+    ok &= check_at_least(test, "grains molten [kg] (the beam melts powder)", s["grain_mass_molten_kg"], 1e-10)
+    ok &= check_at_least(test, "melt pool depth below the substrate surface [um] (substrate melts)",
+                         s["melt_pool_depth_max_um"], 10.0)
+    return ok
+
+
+def main():
+    keep = "--keep" in sys.argv
+    work = tempfile.mkdtemp(prefix="meltdem-pbf-point-")
+    case = os.path.join(work, "case")
+    pbf.build(case, "point-ci")
+    pbf.run(case, 1)
+    s = pbf.summary(case)
+    pbf.print_summary(s)
+    ok = common_checks(TEST, case, s)
+    # paper: the peak exceeds boiling and recoil opens a keyhole (depression of the surface)
+    ok &= check_at_least(TEST, "peak metal temperature [K] vs boiling T_v (paper: exceeded)",
+                         s["peak_metal_T_K"], pbf.T_BOIL)
+    ok &= check_at_least(TEST, "keyhole depth below the initial substrate surface [um] (paper: deep "
+                         "keyhole; at least one cell)", s["keyhole_depth_max_um"], 10.0)
+    ok &= check_at_least(TEST, "grains ejected (paper: ejected from the melt-pool edge)", s["grains_ejected"], 1)
+    return fc.finish(ok, work, keep)
+
+
+if __name__ == "__main__":
+    sys.exit(main())
