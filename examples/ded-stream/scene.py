@@ -55,13 +55,13 @@ PAPER = dict(pool_diameter_um=130.0, pool_time_ms=0.018, first_in_beam_ms=0.004,
              first_enters_pool_ms=0.006, second_hits_first_ms=0.007, third_immerses_ms=0.009,
              last_flies_ms=0.026)
 
-# end times: laser on to just past the paper's 0.018 ms pool (CI) / to 0.026 ms (full); the
-# switch-off variant always to the paper's 0.026 ms
-# step_cells_off: the switch-off variant's solid particles cross the cooling melt next to the
-# interface, where the explicit drag reaction into light (mostly gas) cells needs a 5x shorter
-# fluid step to stay stable (README)
-VARIANTS = {"ci": dict(dx=10e-6, end=2.0e-5, end_off=2.6e-5, write=1e-6, step_cells=0.25, step_cells_off=0.02),
-            "full": dict(dx=5e-6, end=2.6e-5, end_off=2.6e-5, write=1e-6, step_cells=0.25, step_cells_off=0.04)}
+# end times: laser on to just past the paper's 0.018 ms pool; the switch-off variant to the
+# paper's 0.026 ms, except on the CI mesh: there the last particle reaches the still liquid pool
+# at 0.0175 ms, where the coupling's explicit drag reaction into light, mostly gas interface cells
+# goes unstable (README), so the CI run stops at 0.017 ms. step_cells_off: a 5x shorter fluid step
+# keeps that instability bounded (README)
+VARIANTS = {"ci": dict(dx=10e-6, end=2.0e-5, end_off=1.7e-5, write=1e-6, step_cells=0.25, step_cells_off=0.25),
+            "full": dict(dx=5e-6, end=2.6e-5, end_off=2.6e-5, write=1e-6, step_cells=0.25, step_cells_off=0.02)}
 
 
 def particle_starts():
@@ -218,6 +218,9 @@ def run(case, np_=1):
 
 
 # ---------------------------------------------------------------- analysis
+DUMP_DT = 1e-7
+
+
 def read_dump(case):
     """{id: array of rows (t, x, y, z, vx, vy, vz, r, T, fmelt)}; the time is step * DEM_DT."""
     out, step, mode = {}, None, None
@@ -271,9 +274,12 @@ def laser_budget(case):
     return p["time"][:k], p["dt"][:k], cont[:k], p["laser_heat"][:k] / p["dt"][:k]
 
 
-def particle_events(tracks, pool):
-    """Per particle: first time its bottom reaches the substrate top or it is deflected (its
-    velocity differs from the initial by > 20 %), its fate and its molten fraction."""
+def particle_events(tracks, t_end):
+    """Per particle: arrival = first dump time its bottom reaches the substrate top, it is
+    deflected (velocity off the initial by > 20 %), or it melts away within 5 um of the
+    substrate top; its molten fraction and its fate. A particle missing from the last dumps
+    melted completely (fix powder/melt deletes it; one that left the mesh would be booked as
+    lost and stop the run's ledger showing it)."""
     out = []
     for k, h in enumerate(HEIGHTS, start=1):
         tr = tracks.get(k)
@@ -281,26 +287,34 @@ def particle_events(tracks, pool):
         if tr is None or not len(tr):
             out.append(ev)
             continue
+        last = tr[-1]
+        gone = last[0] < t_end - 2 * DUMP_DT
+        bottom = last[3] - last[7]
         v0 = np.array(particle_starts()[k - 1][1])
         dv = np.linalg.norm(tr[:, 4:7] - v0, axis=1) / SPEED
-        touch = tr[:, 3] - D_P / 2 <= SUB
+        touch = tr[:, 3] - tr[:, 7] <= SUB
         hit = np.nonzero(touch | (dv > 0.2))[0]
-        ev["arrival_ms"] = float(tr[hit[0], 0] * 1e3) if len(hit) else None
-        ev["arrival_by"] = (None if not len(hit) else "substrate level" if touch[hit[0]] else "deflected")
-        last = tr[-1]
+        if len(hit):
+            ev["arrival_ms"] = float(tr[hit[0], 0] * 1e3)
+            ev["arrival_by"] = "substrate level" if touch[hit[0]] else "deflected"
+        elif gone and bottom <= SUB + 5e-6:
+            ev["arrival_ms"], ev["arrival_by"] = float(last[0] * 1e3), "melted at the surface"
+        else:
+            ev["arrival_ms"], ev["arrival_by"] = None, None
         # molten fraction from the shrinking radius (fix powder/melt keeps the density)
-        ev["molten_fraction"] = float(max(last[9], 1 - (last[7] / (D_P / 2)) ** 3))
+        ev["molten_fraction"] = 1.0 if gone else float(max(last[9], 1 - (last[7] / (D_P / 2)) ** 3))
         ev["last_seen_ms"] = float(last[0] * 1e3)
-        ev["peak_T_K"] = float(tr[:, 8].max())
+        ev["last_bottom_above_substrate_um"] = float((bottom - SUB) * 1e6)
+        ev["peak_T_K"] = T_MELT if gone else float(tr[:, 8].max())
         ev["final_z_um"] = float(last[3] * 1e6)
         ev["final_vz"] = float(last[6])
-        ev["min_bottom_um"] = float((tr[:, 3] - last[7]).min() * 1e6)
-        ev["rose_after_lowest"] = bool(tr[-1, 3] - tr[np.argmin(tr[:, 3]), 3] > 1e-6 and last[6] > 0)
-        if ev["molten_fraction"] >= 0.999:
-            ev["fate"] = "melted"
-        elif last[3] - last[7] > SUB + 1e-6 and ev["rose_after_lowest"]:
+        ev["bounced"] = bool(np.any(tr[:, 6] > 0))
+        if gone:
+            where = "at the pool surface" if bottom <= SUB + 5e-6 else "in flight"
+            ev["fate"] = f"melted {where}" + (" after bouncing" if ev["bounced"] else "")
+        elif bottom > SUB + 1e-6 and ev["bounced"]:
             ev["fate"] = "bounced, above the substrate"
-        elif last[3] - last[7] > SUB + 2e-6 and ev["arrival_ms"] is None:
+        elif ev["arrival_ms"] is None:
             ev["fate"] = "in flight"
         else:
             ev["fate"] = "in the pool / on the substrate"
@@ -313,8 +327,8 @@ def analyse(case):
     dx, n = a["dx"], tuple(a["n"])
     pool = pool_stats(case, dx, n)
     tracks = read_dump(case)
-    events = particle_events(tracks, pool)
     t, dt, cont, part = laser_budget(case)
+    events = particle_events(tracks, float(t[-1]))
     lit = (t - dt >= 0) & (t <= (T_OFF if a["switch_off"] else 1e9))
     if a["switch_off"]:
         lit &= t <= T_OFF - 1e-15
@@ -345,6 +359,9 @@ def analyse(case):
     s["laser_worst_rel_error_lit"] = float(err.max()) if len(err) else None
     s["laser_absorbed_by_particles_J"] = float(np.sum(part * dt))
     s["laser_absorbed_by_continuum_J"] = float(np.sum(cont * dt))
+    lost = np.sum(((ETA * P_LASER - cont - part) * dt)[lit])
+    s["laser_energy_short_of_eta_P_J"] = float(lost)
+    s["laser_energy_short_of_eta_P_fraction"] = float(lost / np.sum((ETA * P_LASER * dt)[lit]))
     s["laser_max_after_off_W"] = float(np.max(cont[dark] + part[dark])) if np.any(dark) else None
     s["worst_mass_continuum_error"] = float(np.max(np.abs(steps["mass_continuum_error"])))
     s["worst_enthalpy_continuum_error"] = float(np.max(np.abs(steps["enthalpy_continuum_error"])))
@@ -367,16 +384,17 @@ def print_summary(s):
     for t, dd, dp, T in zip(s["pool_time_ms"], s["pool_diameter_um"], s["pool_depth_um"], s["peak_T_K"]):
         print(f"  {t:7.4f}  {dd:18.1f}  {dp:10.1f}  {T:10.0f}")
     print(f"pool diameter at 0.018 ms: {s['pool_diameter_at_0.018ms_um']} um (paper ~130 um)")
-    print(" id  h0[um]  arrival[ms] (by)          kinematic[ms]  molten  peak T[K]  fate")
+    print(" id  h0[um]  arrival[ms] (by)                 kinematic[ms]  molten  peak T[K]  fate")
     for e in s["particles"]:
         arr = e.get("arrival_ms")
         arr_s = f"{arr:.4f} ({e.get('arrival_by')})" if arr is not None else "-"
-        print(f"  {e['id']}  {e['start_height_um']:6.0f}  {arr_s:25s} {e['kinematic_arrival_ms']:.4f}"
+        print(f"  {e['id']}  {e['start_height_um']:6.0f}  {arr_s:32s} {e['kinematic_arrival_ms']:.4f}"
               f"         {e.get('molten_fraction', float('nan')):.3f}  {e.get('peak_T_K', float('nan')):8.0f}"
               f"  {e.get('fate', '-')}")
     print(f"laser: worst |continuum + particles - eta P|/eta P on {s['laser_lit_steps']} lit steps "
           f"{s['laser_worst_rel_error_lit']:.2e}; particles absorbed {s['laser_absorbed_by_particles_J']:.3e} J, "
-          f"continuum {s['laser_absorbed_by_continuum_J']:.3e} J")
+          f"continuum {s['laser_absorbed_by_continuum_J']:.3e} J; short of eta P t by "
+          f"{s['laser_energy_short_of_eta_P_fraction']:.2e} (light on particles that melted away)")
     print(f"ledger: worst per-step continuum errors mass {s['worst_mass_continuum_error']:.2e}, enthalpy "
           f"{s['worst_enthalpy_continuum_error']:.2e}; system mass {s['worst_mass_system_error']:.2e}, "
           f"enthalpy {s['worst_enthalpy_system_error']:.2e}")
@@ -391,15 +409,15 @@ def main():
     g.add_argument("--full", dest="variant", action="store_const", const="full")
     ap.add_argument("--switch-off", action="store_true", help="laser off at 0.012 ms (paper's 2nd variant)")
     ap.add_argument("--dx", type=float, help="cell size [m] (ci 10e-6, full 5e-6)")
-    ap.add_argument("--end", type=float, help="end time [s] (ci 2.0e-5, switch-off and full 2.6e-5)")
+    ap.add_argument("--end", type=float, help="end time [s] (ci 2.0e-5, ci switch-off 1.7e-5, full 2.6e-5)")
     ap.add_argument("--write", type=float, help="write interval [s] (1e-6)")
-    ap.add_argument("--dump-dt", type=float, default=1e-7, help="particle dump interval [s]")
+    ap.add_argument("--dump-dt", type=float, default=DUMP_DT, help="particle dump interval [s]")
     ap.add_argument("--distribution", default="overlap", choices=["centre", "neighbours", "overlap"])
     ap.add_argument("--nsmooth", type=int, default=2)
     ap.add_argument("--max-co", type=float, default=0.25, help="maxCo and maxAlphaCo")
     ap.add_argument("--step-cells", type=float,
                     help="largest fluid step as the fraction of a cell a 10 m/s particle crosses "
-                         "(0.25; switch-off: ci 0.02, full 0.04)")
+                         "(0.25; full switch-off 0.02)")
     ap.add_argument("--no-recoil", dest="recoil", action="store_false")
     ap.add_argument("--no-evaporation", dest="evaporation", action="store_false")
     ap.add_argument("--np", type=int, default=1)

