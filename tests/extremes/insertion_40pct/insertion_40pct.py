@@ -15,11 +15,12 @@ and say so (naming the knobs) when it cannot make progress -- never force an ove
   stop:    the same with stall 20 error: the run stops at that try with the same message.
   holes:   100 spheres of d = 15 um: all placed in the first try (they fit the holes), no
            overlap anywhere, solids 40 % -> 40.7 %, nothing moves over 200 steps.
-  waiting: the 40 % block falls out of the region at 1 m/s (no gravity, no walls); 300 spheres of
+  waiting: the 40 % block falls out of the region at 5 m/s (no gravity, no walls); 300 spheres of
            d = 30 um due at once, moving with it: they wait while the region is full and are
-           all placed as room frees up, none overlapping (the largest speed stays 1 m/s), none
+           all placed as room frees up, none overlapping (the largest speed stays 5 m/s), none
            before the block has moved far enough for a sphere nested in the hollow of four top
            spheres: 0.5 d + sqrt(d^2 - a^2/2) - a/2 - 2 jitter = 0.56 d.
+usage: insertion_40pct.py [--np N]   (N ranks: every rank takes the same decisions)
 """
 import math
 import os
@@ -32,7 +33,8 @@ sys.path.insert(0, os.environ["MELTDEM_SOURCE_DIR"] + "/tests/support")
 from meltdem_report import check_absolute, check_at_most, check_relative  # noqa: E402
 from lammps_run import run, thermo_rows  # noqa: E402
 
-T = "extremes.insertion_40pct"
+NP = int(sys.argv[sys.argv.index("--np") + 1]) if "--np" in sys.argv else 1
+T = "extremes.insertion_40pct" + (f".np{NP}" if NP > 1 else "")
 D, RHO, PHI, N_SIDE = 30e-6, 7800.0, 0.40, 9
 A = D * (math.pi / (6 * PHI)) ** (1 / 3)
 L = N_SIDE * A
@@ -46,7 +48,7 @@ def lattice():
     return (g + 0.5) * A + rng.uniform(-JITTER, JITTER, g.shape)
 
 
-def text(insert, steps, v0=0.0, box_below=0.0):
+def text(insert, steps, v0=0.0, box_below=0.0, every=1):
     """The lattice at rest (or moving down at v0) in region fill = [0, L]^3, then insert."""
     atoms = "\n".join(f"create_atoms 1 single {x!r} {y!r} {z!r} units box" for x, y, z in lattice())
     return f"""units si
@@ -76,7 +78,7 @@ compute vs all reduce sum v_vol
 variable phi equal c_vs/{L**3!r}
 thermo_style custom step atoms f_ins[1] f_ins[2] f_ins[3] f_ins[7] c_ov[1] c_ov[2] c_vmax v_phi
 thermo_modify format float %.10g
-thermo 1
+thermo {every}
 run {steps}
 """
 
@@ -101,7 +103,7 @@ def main():
 
     # full: same-size particles cannot fit; they wait, with a warning after 20 tries
     rc, out = run(text(f"fix ins all powder/insert 30 4711 region fill diam one {D!r} dens {RHO!r} "
-                       "attempts 200 stall 20 warn", 40), check=False)
+                       "attempts 200 stall 20 warn", 40), check=False, np=NP)
     r = rows_of(out)
     ok &= check_absolute(T, "full: exit code", rc, 0, 0)
     ok &= check_absolute(T, "full: particles inserted into the 40 % region", r[-1]["f_ins[1]"], 0, 0)
@@ -119,7 +121,7 @@ def main():
 
     # stop: the same, but the stall stops the run at the 20th try
     rc, out = run(text(f"fix ins all powder/insert 30 4711 region fill diam one {D!r} dens {RHO!r} "
-                       "attempts 200 stall 20 error", 40), check=False)
+                       "attempts 200 stall 20 error", 40), check=False, np=NP)
     m = stall_message(out)
     ok &= check_absolute(T, "stop: exit code is nonzero", int(rc != 0), 1, 0)
     ok &= check_absolute(T, "stop: an ERROR naming region, attempts, gap, rate",
@@ -132,13 +134,13 @@ def main():
     for bad, msg in (("stall 0 warn", "stall tries must be > 0"), ("stall 5 maybe", "stall action maybe"),
                      ("stall 5", "missing value for stall")):
         rc, out = run(text(f"fix ins all powder/insert 1 4711 region fill diam one {D!r} dens {RHO!r} {bad}", 1),
-                      check=False)
+                      check=False, np=NP)
         ok &= check_absolute(T, f"bad input '{bad}': stops with '{msg}'", int(rc != 0 and msg in out), 1, 0)
 
     # holes: 15 um spheres fit the cube centres: placed at once, no contact anywhere
     n_small, d_small = 100, D / 2
     rc, out = run(text(f"fix ins all powder/insert {n_small} 4711 region fill diam one {d_small!r} dens {RHO!r} "
-                       "attempts 500 stall 20 warn", 200), check=False)
+                       "attempts 500 stall 20 warn", 200), check=False, np=NP)
     r = rows_of(out)
     ok &= check_absolute(T, "holes: exit code", rc, 0, 0)
     first = next((x["Step"] for x in r if x["f_ins[1]"] == n_small), math.inf)
@@ -150,11 +152,12 @@ def main():
     ok &= check_absolute(T, "holes: stall warnings", len(re.findall("no particle placed in", out)), 0, 0)
 
     # waiting: the block leaves the region at 1 m/s; the pending particles follow as room frees up
-    n_wait, v0 = 300, 1.0
+    n_wait, v0 = 300, 5.0
     steps = int(round(1.2 * L / v0 / 1e-8))
     rc, out = run(text(f"fix ins all powder/insert {n_wait} 4711 region fill diam one {D!r} dens {RHO!r} "
-                       f"vel 0 0 {-v0!r} attempts 100 every 10 stall 1000000 warn", steps, v0=v0, box_below=1.3 * L),
-                  check=False)
+                       f"vel 0 0 {-v0!r} attempts 100 every 10 stall 1000000 warn", steps, v0=v0, box_below=1.3 * L,
+                       every=10),
+                  check=False, np=NP)
     r = rows_of(out)
     ok &= check_absolute(T, "waiting: exit code", rc, 0, 0)
     placed = [x["f_ins[1]"] for x in r]
