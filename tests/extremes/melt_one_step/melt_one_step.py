@@ -10,6 +10,8 @@ Over a fluid step the particle heats with the fluid frozen (explicit coupling); 
             m (cp Tm + L), so the net heat taken is only m cp T0 < 0: bounded by construction.
             Checks: all of it melts in step 1; heat taken = m (cp (Tm - T0) + L) and enthalpy
             handed over = m (cp Tm + L) (1e-10); T stays in [T0, 1500] K; balances closed.
+  melt_pool: the same particle into liquid metal at 2000 K (k 30): melts within the first step
+            (0.39 ms), the same heat to 1e-10, T in [300, 2000] K, balances closed.
   overdraw: d = 600 um, cp 500, Tm 3000 K (no melting): m cp = 4.5e-4 J/K against a cell of
             C = rho cp h^3 = 2.9e-6 J/K. Heating with the gas frozen for 0.5 ms, it takes 0.19 J,
             40x what the cell holds above 300 K: the cell falls to -151 K (without the guard, with the
@@ -45,9 +47,9 @@ def particle(d, cp, Tm, L=2.7409e5):
     return dict(d=d, rho=8020.0, cp=cp, Tm=Tm, L=L, T0=T0, y=3 * H + H / 2, held=True)
 
 
-def run(work, name, p, dt, t_end):
+def run(work, name, p, dt, t_end, floor=None):
     case = os.path.join(work, name)
-    cc.channel_case(case, "centre", p, channel=CHANNEL, t_end=t_end, fluid_dt=dt, max_co=0.5)
+    cc.channel_case(case, "centre", p, channel=CHANNEL, t_end=t_end, fluid_dt=dt, max_co=0.5, floor=floor)
     rc = cc.run_solver(case, check=False)
     log = open(os.path.join(case, "log.meltdemFoam")).read()
     Tr = np.array([[float(a), float(b)] for a, b in re.findall(r"T min/max = (\S+), (\S+)", log)])
@@ -87,6 +89,26 @@ def main():
     ok &= check_at_most(T, "one_step: highest continuum T - 1500 K [K] (bounded above)", Tr[:, 1].max() - GAS["T"],
                         1e-6)
     ok &= cc.check_balances(T + ".one_step", led)
+
+    # melt_pool: the same cold particle dropped into liquid metal at 2000 K (the lower half of the
+    # box; the metal the melt displaces leaves through the open bottom, booked as boundary flow)
+    p = particle(200e-6, 48.35, 1000.0)
+    G = 2 * 30.0 * math.pi * p["d"]  # metal k = 30 (coupledcase), Nu = 2
+    t_melt = (m * p["cp"] / G * math.log((2000.0 - T0) / (2000.0 - p["Tm"]))
+              + p["rho"] * p["L"] * p["d"] ** 2 / (4 * 2 * 30.0 * (2000.0 - p["Tm"])))
+    p["y"] = 1.5 * H
+    case, rc, log, Tr = run(work, "melt_pool", p, 1e-3, 2e-3, floor=(3 * H, 2000.0))
+    pc, led = cc.particles_csv(case), cc.ledger(case)
+    ok &= check_absolute(T, "melt_pool: exit code", rc, 0, 0)
+    ok &= check_absolute(T, "melt_pool: no NaN in the output", no_nan(log), 1, 0)
+    ok &= check_at_most(T, "melt_pool: analytic melting time in 2000 K melt / first fluid step", t_melt / pc["dt"][0],
+                        1.0)
+    ok &= check_relative(T, "melt_pool: mass melted in the first step [kg]", pc["mass_melted"][0], m, 1e-12)
+    ok &= check_relative(T, "melt_pool: heat taken in step 1 vs m (cp (Tm - T0) + L) [J]", pc["heat_absorbed"][0],
+                         m * (p["cp"] * (p["Tm"] - T0) + p["L"]), 1e-10)
+    ok &= check_at_most(T, "melt_pool: T0 - lowest continuum T [K]", T0 - Tr[:, 0].min(), 0.0)
+    ok &= check_at_most(T, "melt_pool: highest continuum T - 2000 K [K]", Tr[:, 1].max() - 2000.0, 1e-3)
+    ok &= cc.check_balances(T + ".melt_pool", led)
 
     # overdraw: the cold particle takes more than the cell holds -> stop after step 1
     p = particle(600e-6, 500.0, 3000.0)
