@@ -5,7 +5,7 @@ finest mesh and against the conduction estimate (Gaussian surface source of the 
 spot on bare SS304). Writes slm_mesh_resolution.md and .png next to this script.
 
     /usr/bin/python3 bench/slm_mesh_resolution.py [--cells 37.5e-6,30e-6,20e-6,15e-6] [--work DIR]
-        [--np 1] [--bed bed.dump]
+        [--np 1] [--bed bed.dump] [--out DIR]
 
 All runs scan the same poured bed (poured once, or --bed). Run by hand (minutes per point).
 """
@@ -28,6 +28,7 @@ def main():
     ap.add_argument("--np", type=int, default=1)
     ap.add_argument("--bed")
     ap.add_argument("--plot-only", action="store_true", help="re-plot from WORK/results.json")
+    ap.add_argument("--out", default=HERE, help="folder of the .md and .png (default: bench/)")
     a = ap.parse_args()
     os.makedirs(a.work, exist_ok=True)
     res_path = os.path.join(a.work, "results.json")
@@ -51,10 +52,10 @@ def main():
                 s = dict(status=f"failed: {str(e).splitlines()[0][:120]}", wall_s=time.time() - t, cell_m=h)
             results[f"{h:.4g}"] = s
             json.dump(results, open(res_path, "w"), indent=1)
-    write(results, a.np)
+    write(results, a.np, a.out)
 
 
-def write(results, np_):
+def write(results, np_, out):
     import numpy as np
     import matplotlib
     matplotlib.use("Agg")
@@ -83,7 +84,7 @@ def write(results, np_):
         lines.append(f"| {h * 1e6:g} | {s['cells']} | {50e-6 / h:.2f} | {s['track_width_m'] * 1e6:.1f} | "
                      f"{s['track_depth_m'] * 1e6:.1f} | {s['bead_height_m'] * 1e6:.1f} | "
                      f"{ef * 100:+.1f} % | {ea * 100:+.1f} % | {s['wall_s']:.0f} | ok |")
-    open(os.path.join(HERE, "slm_mesh_resolution.md"), "w").write("\n".join(lines) + "\n")
+    open(os.path.join(out, "slm_mesh_resolution.md"), "w").write("\n".join(lines) + "\n")
     print("\n".join(lines))
     if not ok:
         return
@@ -106,7 +107,7 @@ def write(results, np_):
     ax[1].set_ylabel("[um]")
     ax[1].legend()
     fig.tight_layout()
-    fig.savefig(os.path.join(HERE, "slm_mesh_resolution.png"), dpi=110)
+    fig.savefig(os.path.join(out, "slm_mesh_resolution.png"), dpi=110)
 
 
 if __name__ == "__main__":

@@ -37,12 +37,10 @@ def main():
     scene.build(case, "ci", bed=bed)
     scene.run(case)
     s = scene.analyse(case)
-    lost_light = ("light intercepted by melting grains is partly unbooked in the steps where grains melt "
-                  "(coupling; 4e-5 of eta P t_scan)")
     ok = check_at_most(TEST, "worst |absorbed laser power (continuum + particles) - eta P| / eta P, per step",
-                       s["laser_power_worst_rel_error"], 1e-9, xfail=lost_light)
+                       s["laser_power_worst_rel_error"], 1e-9)
     ok &= check_relative(TEST, "absorbed laser energy over the scan [J] (eta P t_scan)",
-                         s["laser_energy_absorbed_J"], s["laser_energy_eta_P_t_J"], 1e-9, xfail=lost_light)
+                         s["laser_energy_absorbed_J"], s["laser_energy_eta_P_t_J"], 1e-9)
     ok &= cc.check_balances(TEST, cc.ledger(case), mass=1e-12, energy=1e-6)
     ok &= check_relative(TEST, "melted track width [m] vs conduction estimate (Gaussian source, bare SS304)",
                          s["track_width_m"], s["gaussian_width_m"], 0.3,
