@@ -52,7 +52,7 @@ END = {1.0: 1.0e-4, 10.0: 5.0e-5, 50.0: 2.0e-5}   # paper's times (1, 10 m/s); 5
 VARIANTS = {
     # paper size: 320 x 320 x 200 um, 500 particles
     "full": dict(L=320e-6, ztop=200e-6, N=500, dx=20e-6 / 3, speeds=[1.0, 10.0, 50.0],
-                 distribution="overlap"),
+                 distribution="neighbours"),
     # CI: 200 x 200 um floor (same powder per area: 195 particles), 10 um cells
     "ci": dict(L=200e-6, ztop=200e-6, N=195, dx=10e-6, speeds=[1.0, 10.0, 50.0],
                distribution="neighbours"),
@@ -243,6 +243,16 @@ def run(case, np_=1):
         c = os.path.join(case, speed_dir(v))
         if p["particles"] == "on":
             shutil.copy(os.path.join(bed, "bed.data"), os.path.join(c, "bed.data"))
+        # a re-run starts clean: no time folders, ledgers or trajectories of an earlier run
+        for d in fc.time_dirs(c):
+            if float(d) > 0:
+                shutil.rmtree(os.path.join(c, d))
+        for d in ["postProcessing", "traj.dump"] + [d for d in os.listdir(c) if d.startswith("processor")]:
+            path = os.path.join(c, d)
+            if os.path.isdir(path):
+                shutil.rmtree(path)
+            elif os.path.exists(path):
+                os.remove(path)
         t0 = time.time()
         fc.run(["blockMesh"], c, "log.blockMesh")
         if np_ > 1:
@@ -337,6 +347,12 @@ def analyse_speed(case, p, v):
         ztop_bed, solid = bed_surface(atoms0, p["L"])
         res["bed_top_um"] = ztop_bed * 1e6
         res["bed_solid_layer_um"] = solid * 1e6
+    # footprint on the bed: the binder (alpha >= 0.5) inside the bed layer (below the bed top;
+    # without particles the lowest cell layer), projected, as an equivalent radius [m]
+    layer = (Z.reshape(nz, ny, nx)[:, 0, 0] - ZFLOOR) < (ztop_bed if ztop_bed is not None else h[2])
+
+    def footprint(a3):
+        return math.sqrt((a3[layer] >= 0.5).any(axis=0).sum() * h[0] * h[1] / math.pi)
     lowest_start = DROP_ABOVE - DROP_D / 2     # droplet bottom above the substrate at t = 0
     last = times[-1]
     a = fc.read_internal(os.path.join(c, last, "alpha.metal"))
@@ -349,7 +365,8 @@ def analyse_speed(case, p, v):
             Ut = np.tile(Ut, (at.size, 1))
         m = np.sum(at)
         zlow = Z[at >= 0.5].min() - h[2] / 2 - ZFLOOR if (at >= 0.5).any() else 0.0
-        fall.append((float(t), float(np.sum(at * Z) / m), float(np.sum(at * Ut[:, 2]) / m), zlow))
+        fall.append((float(t), float(np.sum(at * Z) / m), float(np.sum(at * Ut[:, 2]) / m), zlow,
+                     footprint(at.reshape(nz, ny, nx))))
     fall = np.array(fall)
     # reference: the droplet's centroid falls with v0 + g t, slowed by the gas drag
     # (Schiller-Naumann on the 80 um sphere, gas table 3), before its bottom reaches an obstacle
@@ -376,11 +393,12 @@ def analyse_speed(case, p, v):
     Xc, Yc = X.reshape(nz, ny, nx)[0], Y.reshape(nz, ny, nx)[0]
     rr = np.hypot(Xc - xc, Yc - yc)
     res["spread_max_radius_um"] = float((rr[wet].max() + h[0] / 2) * 1e6) if wet.any() else 0.0
-    # footprint on the bed: the binder (alpha >= 0.5) inside the bed layer (below the bed top;
-    # without particles the lowest cell layer), projected, as an equivalent radius
-    layer = (Z.reshape(nz, ny, nx)[:, 0, 0] - ZFLOOR) < (ztop_bed if ztop_bed is not None else h[2])
-    foot = (a3[layer] >= 0.5).any(axis=0)
-    res["footprint_radius_um"] = math.sqrt(foot.sum() * h[0] * h[1] / math.pi) * 1e6
+    res["footprint_radius_um"] = footprint(a3) * 1e6
+    res["footprint_radius_largest_um"] = float(fall[:, 4].max() * 1e6)
+    res["footprint_radius_largest_time_ms"] = float(fall[np.argmax(fall[:, 4]), 0] * 1e3)
+    # penetration history: when the binder front reached the substrate
+    reached = fall[fall[:, 3] <= 0.0, 0]
+    res["binder_reaches_substrate_ms"] = float(reached[0] * 1e3) if reached.size else float("nan")
     zlow = Z[a >= 0.5].min() - h[2] / 2 - ZFLOOR if (a >= 0.5).any() else float("nan")
     res["binder_lowest_um"] = zlow * 1e6
     if ztop_bed is not None:
@@ -414,7 +432,7 @@ def analyse_speed(case, p, v):
             res["ledger_mass_continuum_error_max"] = float(np.max(np.abs(rows["mass_continuum_error"])))
             res["ledger_momentum_continuum_error_max"] = float(max(np.max(np.abs(rows[f"mom_{k}_continuum_error"]))
                                                                    for k in "xyz"))
-    np.savetxt(os.path.join(c, "fall.txt"), fall, header="time centroid_z centroid_w lowest_binder_above_substrate")
+    np.savetxt(os.path.join(c, "fall.txt"), fall, header="time centroid_z centroid_w lowest_binder_above_substrate footprint_radius")
     return res
 
 

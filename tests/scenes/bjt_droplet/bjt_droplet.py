@@ -10,7 +10,8 @@ The paper gives no numbers, only what it saw; checked here:
     took equals what the continuum got (action = reaction), no particle lost, and the droplet's
     velocity before contact against its kinematics (v0 + g t with the gas drag of an isolated
     sphere);
-  - the paper's ordering as measurable statements: footprint(10) > footprint(1),
+  - the paper's ordering as measurable statements: footprint(10) > footprint(1) (at the paper's
+    times and the largest over the run), max particle speed(50) > (10) > (1),
     penetration(10) < penetration(1), displaced(50) > displaced(10) > displaced(1), booked XFAIL
     where this unresolved-particle model does not reproduce them (see the scene's README).
 """
@@ -29,7 +30,8 @@ import scene  # noqa: E402
 import coupledcase as cc  # noqa: E402
 
 TEST = "scenes.bjt-droplet"
-UNRESOLVED = "unresolved particles: the bed does not block the binder (point drag only)"
+UNRESOLVED = ("unresolved particles: the bed only drags on the binder (point drag), it cannot block it; the "
+              "binder reaches the substrate at every speed")
 
 
 def main():
@@ -70,16 +72,22 @@ def main():
         ok &= check_at_least(TEST, f"{k}: impulse the bed took from the binder, -z [kg m/s] (> 0: the droplet "
                              "pushes the bed)", -drag, 1e-30)
     # the paper's ordering (section 4.2), at its times (0.1 ms for 1 m/s, 0.05 ms for 10 m/s)
-    ok &= check_at_least(TEST, "footprint radius 10 m/s minus 1 m/s [um] (paper: spread wider; bound dx/2)",
-                         r["v10_footprint_radius_um"] - r["v1_footprint_radius_um"], dx_um / 2,
-                         xfail="10 um cells: the film thinner than a cell")
+    ok &= check_at_least(TEST, "footprint radius at the paper's times, 10 m/s minus 1 m/s [um] (paper: spread "
+                         "wider; bound dx/2)", r["v10_footprint_radius_um"] - r["v1_footprint_radius_um"], dx_um / 2,
+                         xfail="the 10 m/s droplet spreads, then recoils (surface tension): at 0.05 ms its footprint "
+                         "is back near the 1 m/s one")
+    ok &= check_at_least(TEST, "largest footprint radius over the run, 10 m/s minus 1 m/s [um] (bound dx/2)",
+                         r["v10_footprint_radius_largest_um"] - r["v1_footprint_radius_largest_um"], dx_um / 2)
     ok &= check_at_least(TEST, "penetration 1 m/s minus 10 m/s [um] (paper: less penetration at 10; bound dx)",
                          r["v1_penetration_um"] - r["v10_penetration_um"], dx_um, xfail=UNRESOLVED)
     ok &= check_at_least(TEST, "displaced particles 10 m/s minus 1 m/s (paper: more powder dynamics)",
                          r["v10_displaced_particles"] - r["v1_displaced_particles"], 1,
-                         xfail="bed held by contacts: few particles move a radius")
+                         xfail="drag on a bed held by its contacts and the substrate moves no particle a radius "
+                         "at 1 or 10 m/s")
     ok &= check_at_least(TEST, "displaced particles 50 m/s minus 10 m/s (paper: splash, ejects powder)",
                          r["v50_displaced_particles"] - r["v10_displaced_particles"], 1)
+    ok &= check_at_least(TEST, "largest particle speed 10 m/s minus 1 m/s [m/s]",
+                         r["v10_max_particle_speed_m_s"] - r["v1_max_particle_speed_m_s"], 1e-3)
     ok &= check_at_least(TEST, "largest particle speed 50 m/s minus 10 m/s [m/s]",
                          r["v50_max_particle_speed_m_s"] - r["v10_max_particle_speed_m_s"], 1e-3)
     if ok and not keep:
