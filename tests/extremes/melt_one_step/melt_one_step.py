@@ -12,6 +12,10 @@ Over a fluid step the particle heats with the fluid frozen (explicit coupling); 
             handed over = m (cp Tm + L) (1e-10); T stays in [T0, 1500] K; balances closed.
   melt_pool: the same particle into liquid metal at 2000 K (k 30): melts within the first step
             (0.39 ms), the same heat to 1e-10, T in [300, 2000] K, balances closed.
+  pool_fine: the same in 20 um cells (d/dx = 10, distribution overlap): the particle melts away
+            within the 0.5 ms step, so its melt is spread by its last solid size: 524 cell volumes
+            into one cell. Must stop, naming maxDeltaT (and the distribution), the number exact;
+            with maxDeltaT 1e-5 s it melts over many steps: bounded, closed.
   overdraw: d = 600 um, cp 500, Tm 3000 K (no melting): m cp = 4.5e-4 J/K against a cell of
             C = rho cp h^3 = 2.9e-6 J/K. Heating with the gas frozen for 0.5 ms, it takes 0.19 J,
             40x what the cell holds above 300 K: the cell falls to -151 K (without the guard, with the
@@ -47,9 +51,9 @@ def particle(d, cp, Tm, L=2.7409e5):
     return dict(d=d, rho=8020.0, cp=cp, Tm=Tm, L=L, T0=T0, y=3 * H + H / 2, held=True)
 
 
-def run(work, name, p, dt, t_end, floor=None):
+def run(work, name, p, dt, t_end, floor=None, channel=CHANNEL, model="centre"):
     case = os.path.join(work, name)
-    cc.channel_case(case, "centre", p, channel=CHANNEL, t_end=t_end, fluid_dt=dt, max_co=0.5, floor=floor)
+    cc.channel_case(case, model, p, channel=channel, t_end=t_end, fluid_dt=dt, max_co=0.5, floor=floor)
     rc = cc.run_solver(case, check=False)
     log = open(os.path.join(case, "log.meltdemFoam")).read()
     Tr = np.array([[float(a), float(b)] for a, b in re.findall(r"T min/max = (\S+), (\S+)", log)])
@@ -109,6 +113,33 @@ def main():
     ok &= check_at_most(T, "melt_pool: T0 - lowest continuum T [K]", T0 - Tr[:, 0].min(), 0.0)
     ok &= check_at_most(T, "melt_pool: highest continuum T - 2000 K [K]", Tr[:, 1].max() - 2000.0, 1e-3)
     ok &= cc.check_balances(T + ".melt_pool", led)
+
+    # pool_fine: the same in 20 um cells (d/dx = 10, overlap): melting away within the 0.5 ms step,
+    # its melt goes by its last solid size into one cell (524 cell volumes): stop naming maxDeltaT;
+    # with maxDeltaT 1e-5 s it melts over many steps, bounded and closed
+    hf = 20e-6
+    fine = dict(lx=15 * hf, ly=30 * hf, lz=15 * hf, h=hf, u=0.0)
+    p = dict(particle(200e-6, 48.35, 1000.0), x=7.5 * hf, y=7.5 * hf, z=7.5 * hf)
+    case, rc, log, Tr = run(work, "pool_fine", p, 1e-3, 2e-3, floor=(15 * hf, 2000.0), channel=fine, model="overlap")
+    msg = re.search(r"the molten metal of one step fills a cell (\S+) times.*", log)
+    print(f"{T}: pool_fine: {msg.group(0) if msg else 'no message'}")
+    ok &= check_absolute(T, "pool_fine: exit code is nonzero (stopped)", int(rc != 0), 1, 0)
+    ok &= check_absolute(T, "pool_fine: no NaN before the stop", no_nan(log), 1, 0)
+    ok &= check_relative(T, "pool_fine: cell volumes of metal in one cell (message) vs V_p / V_cell",
+                         float(msg.group(1)) if msg else math.nan, m / p["rho"] / hf**3, 1e-9)
+    ok &= check_absolute(T, "pool_fine: the message names maxDeltaT and the distribution",
+                         int(bool(msg) and "maxDeltaT" in msg.group(0) and "distribution overlap" in msg.group(0)), 1, 0)
+    case, rc, log, Tr = run(work, "pool_fine_knob", p, 1e-5, 5e-4, floor=(15 * hf, 2000.0), channel=fine,
+                            model="overlap")
+    pc, led = cc.particles_csv(case), cc.ledger(case)
+    print(f"{T}: pool_fine_knob: {len(Tr)} steps, {1 - pc['solid_mass'][-1] / m:.3f} molten by 0.5 ms, "
+          f"T min/max {Tr[:, 0].min():.5g} / {Tr[:, 1].max():.6g} K")
+    ok &= check_absolute(T, "pool_fine_knob: exit code", rc, 0, 0)
+    ok &= check_at_most(T, "pool_fine_knob: T0 - lowest continuum T [K]", T0 - Tr[:, 0].min(), 0.0)
+    ok &= check_at_most(T, "pool_fine_knob: highest continuum T - 2000 K [K]", Tr[:, 1].max() - 2000.0, 1e-3)
+    ok &= check_relative(T, "pool_fine_knob: metal handed over vs mass lost [kg]", np.sum(pc["mass_melted"]),
+                         m - pc["solid_mass"][-1], 1e-12)
+    ok &= cc.check_balances(T + ".pool_fine_knob", led)
 
     # overdraw: the cold particle takes more than the cell holds -> stop after step 1
     p = particle(600e-6, 500.0, 3000.0)
