@@ -150,6 +150,13 @@ LammpsCouplingHost::~LammpsCouplingHost()
 
 double LammpsCouplingHost::timestep() const { return impl_->lmp->update->dt; }
 
+void LammpsCouplingHost::set_timestep(double dt)
+{
+  char line[64];
+  std::snprintf(line, sizeof line, "timestep %.17g", dt);
+  impl_->lmp->input->one(line);
+}
+
 double LammpsCouplingHost::time() const
 {
   const Update *u = impl_->lmp->update;

@@ -40,6 +40,7 @@ class LammpsCouplingHost {
   LammpsCouplingHost &operator=(const LammpsCouplingHost &) = delete;
 
   double timestep() const;  // current DEM step [s]
+  void set_timestep(double dt);  // as the input command timestep (LAMMPS books the time so far)
   double time() const;      // simulated time of LAMMPS [s]
   std::int64_t step() const;
   std::int64_t particles() const;  // global number of atoms

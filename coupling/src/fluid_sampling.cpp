@@ -11,10 +11,13 @@ SampledFluid sample_fluid(const std::vector<CellWeight> &weights, const CellFlui
     throw std::invalid_argument("sample_fluid: T, k, rho, mu, cp and U are required");
   SampledFluid s;
   FluidState &q = s.fluid;
+  double capacity = 0.0, heat = 0.0;
   for (const CellWeight &cw : weights) {
     const long c = cw.cell;
     const double w = cw.weight;
     q.T += w * f.T[c];
+    capacity += w * f.rho[c] * f.cp[c];
+    heat += w * f.rho[c] * f.cp[c] * f.T[c];
     q.k += w * f.k[c];
     q.rho += w * f.rho[c];
     q.mu += w * f.mu[c];
@@ -23,6 +26,7 @@ SampledFluid sample_fluid(const std::vector<CellWeight> &weights, const CellFlui
     if (f.alpha_metal) s.alpha_metal += w * f.alpha_metal[c];
     if (f.liquid_fraction) s.liquid_fraction += w * f.liquid_fraction[c];
   }
+  if (capacity > 0.0) q.T = heat / capacity;
   return s;
 }
 

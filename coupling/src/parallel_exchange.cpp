@@ -178,7 +178,7 @@ void ParallelExchange::sample_global(const CellFluidFields &f, std::vector<Sampl
 {
   if (!f.T || !f.k || !f.rho || !f.mu || !f.cp || !f.U)
     throw std::invalid_argument("particle exchange: T, k, rho, mu, cp and U are required to sample the fluid");
-  constexpr int kFields = 10;
+  constexpr int kFields = 12;
   const std::size_t n = all_.size();
   std::vector<double> partial(kFields * n, 0.0);
   for (std::size_t g = 0; g < n; ++g) {
@@ -194,6 +194,8 @@ void ParallelExchange::sample_global(const CellFluidFields &f, std::vector<Sampl
       for (int d = 0; d < 3; ++d) q[5 + d] += w * f.U[3 * c + d];
       if (f.alpha_metal) q[8] += w * f.alpha_metal[c];
       if (f.liquid_fraction) q[9] += w * f.liquid_fraction[c];
+      q[10] += w * f.rho[c] * f.cp[c];
+      q[11] += w * f.rho[c] * f.cp[c] * f.T[c];
     }
   }
   if (n) MPI_Allreduce(MPI_IN_PLACE, partial.data(), int(kFields * n), MPI_DOUBLE, MPI_SUM, comm_);
@@ -205,6 +207,7 @@ void ParallelExchange::sample_global(const CellFluidFields &f, std::vector<Sampl
     s.fluid.T = q[0], s.fluid.k = q[1], s.fluid.rho = q[2], s.fluid.mu = q[3], s.fluid.cp = q[4];
     for (int d = 0; d < 3; ++d) s.fluid.U[d] = q[5 + d];
     s.alpha_metal = q[8], s.liquid_fraction = q[9];
+    if (q[10] > 0.0) s.fluid.T = q[11] / q[10];  // heat-capacity weighted (fluid_sampling.h)
   }
 }
 
@@ -231,6 +234,31 @@ void ParallelExchange::deposit(const std::vector<Amounts> &local_amounts, std::v
     for (std::size_t k = start_[g]; k < start_[g + 1]; ++k) {
       Amounts &c = cell_amounts.at(std::size_t(cells_[k]));
       for (int q = 0; q < kComponents; ++q) c[q] += weights_[k] * a[q];
+    }
+  }
+}
+
+void ParallelExchange::deposit_heat(const std::vector<double> &local_heat, const CellFluidFields &f,
+                                    std::vector<Amounts> &cell_amounts) const
+{
+  if (local_heat.size() != std::size_t(counts_[rank_]))
+    throw std::invalid_argument("particle exchange: deposit_heat() needs one heat per located local particle");
+  if (!f.rho || !f.cp) throw std::invalid_argument("particle exchange: deposit_heat() needs rho and cp");
+  std::vector<double> all;
+  std::vector<int> counts, displs;
+  allgather_doubles(local_heat, 1, comm_, all, counts, displs);
+  // each particle's capacity sum over every rank's cells, then the shares
+  const std::size_t n = all_.size();
+  std::vector<double> capacity(n, 0.0);
+  for (std::size_t g = 0; g < n; ++g)
+    for (std::size_t k = start_[g]; k < start_[g + 1]; ++k) capacity[g] += weights_[k] * f.rho[cells_[k]] * f.cp[cells_[k]];
+  if (n) MPI_Allreduce(MPI_IN_PLACE, capacity.data(), int(n), MPI_DOUBLE, MPI_SUM, comm_);
+  for (std::size_t g = 0; g < n; ++g) {
+    if (!inside_[g] || all[g] == 0.0) continue;
+    for (std::size_t k = start_[g]; k < start_[g + 1]; ++k) {
+      const long c = cells_[k];
+      const double share = capacity[g] > 0.0 ? weights_[k] * f.rho[c] * f.cp[c] / capacity[g] : weights_[k];
+      cell_amounts.at(std::size_t(c))[kEnthalpy] -= share * all[g];
     }
   }
 }

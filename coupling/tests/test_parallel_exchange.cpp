@@ -84,6 +84,62 @@ TEST_P(ParallelExchangeSerial, SamplingEqualsSampleFluid)
   }
 }
 
+// A particle half in melt, half in gas (overlap, 4 cells across the interface): it sees the
+// melt's temperature (capacity-weighted), and the heat it absorbs is taken from the cells by
+// capacity, so the gas cells (1e-5 of the capacity) lose 1e-5 of their share by volume,
+// every covered cell the same temperature drop per covered volume, and the sum is exact.
+TEST_P(ParallelExchangeSerial, HeatComesFromTheCellsByCapacity)
+{
+  const auto mesh = CartesianGridMesh::uniform(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(8, 8, 8), 8, 8, 8);
+  const double rhocp_metal = 7430.0 * 965.0, rhocp_gas = 7.43 * 10.0;
+  std::vector<double> T, k, rho, mu, cp, U;
+  for (long c = 0; c < mesh.n_cells(); ++c) {
+    const bool metal = mesh.cell_centre(c).y() < 4.0;
+    T.push_back(metal ? 2000.0 : 500.0);
+    k.push_back(metal ? 35.95 : 0.026);
+    rho.push_back(metal ? 7430.0 : 7.43);
+    cp.push_back(metal ? 965.0 : 10.0);
+    mu.push_back(1e-3);
+    U.insert(U.end(), {0.0, 0.0, 0.0});
+  }
+  const CellFluidFields f{T.data(), k.data(), rho.data(), mu.data(), cp.data(), U.data(), nullptr, nullptr};
+  ParallelExchange ex(mesh, GetParam(), MPI_COMM_SELF);
+  // on the interface for centre/overlap; just below it for neighbours (its centre cell is metal)
+  ex.locate({ParticleShape{Eigen::Vector3d(4.5, GetParam() == DistributionModel::Centre ? 3.5 : 4.0, 4.5), 1.6}});
+  std::vector<SampledFluid> s;
+  ex.sample(f, s);
+  std::vector<CellWeight> w;
+  ex.local_weights(0, w);
+  double metal_w = 0.0, cap = 0.0;
+  for (auto &cw : w) {
+    const bool metal = T[cw.cell] > 1000.0;
+    metal_w += metal ? cw.weight : 0.0;
+    cap += cw.weight * (metal ? rhocp_metal : rhocp_gas);
+  }
+  const double expect_T = (metal_w * rhocp_metal * 2000.0 + (1 - metal_w) * rhocp_gas * 500.0) / cap;
+  EXPECT_NEAR(s[0].fluid.T, expect_T, 1e-9 * expect_T);
+  EXPECT_GT(s[0].fluid.T, 1999.9);  // the melt's, not the volume mean
+  const double Q = 2.5e-6;
+  std::vector<Amounts> cells(std::size_t(mesh.n_cells()), Amounts{});
+  ex.deposit_heat({Q}, f, cells);
+  double taken = 0.0, from_gas = 0.0;
+  for (long c = 0; c < mesh.n_cells(); ++c) {
+    taken -= cells[std::size_t(c)][kEnthalpy];
+    if (T[std::size_t(c)] < 1000.0) from_gas -= cells[std::size_t(c)][kEnthalpy];
+  }
+  meltdem::testing::expect_relative(std::string("deposit_heat ") + to_string(GetParam()) + ": heat taken from the cells",
+                                    taken, Q, 1e-14);
+  // the gas's share: its capacity-weighted fraction
+  EXPECT_NEAR(from_gas, Q * (1 - metal_w) * rhocp_gas / cap, 1e-12 * Q);
+  if (metal_w < 1.0) EXPECT_LT(from_gas, 1e-4 * Q);
+  // each covered cell: temperature drop per covered volume fraction the same
+  for (auto &cw : w) {
+    const double c = T[cw.cell] > 1000.0 ? rhocp_metal : rhocp_gas;
+    EXPECT_NEAR(-cells[std::size_t(cw.cell)][kEnthalpy] / (c * cw.weight), Q / cap, 1e-12 * Q / cap);
+  }
+  EXPECT_THROW(ex.deposit_heat({}, f, cells), std::invalid_argument);
+}
+
 INSTANTIATE_TEST_SUITE_P(Models, ParallelExchangeSerial,
                          ::testing::Values(DistributionModel::Centre, DistributionModel::Neighbours,
                                            DistributionModel::Overlap),

@@ -32,7 +32,7 @@ TEST_P(ParallelExchangeMpi, EqualsOneRank)
     for (long c = 0; c < m.n_cells(); ++c) {
       const Eigen::Vector3d x = m.cell_centre(c);
       T.push_back(ExchangeCase::field(x));
-      one.push_back(1.0);
+      one.push_back(1.0 + 1e3 * x.y());  // density varies: capacity weights differ from volume weights
       U.insert(U.end(), {x.x(), x.y(), x.z()});
     }
     return CellFluidFields{T.data(), one.data(), one.data(), one.data(), one.data(), U.data(), one.data(), nullptr};
@@ -45,15 +45,21 @@ TEST_P(ParallelExchangeMpi, EqualsOneRank)
   serial.locate(k.particles);
   std::vector<Amounts> cells_serial(std::size_t(whole.n_cells()), Amounts{});
   serial.deposit(k.amounts, cells_serial);
+  std::vector<double> heat;
+  for (const Amounts &a : k.amounts) heat.push_back(a[kEnthalpy] * 0.3);
+  serial.deposit_heat(heat, fs, cells_serial);
   std::vector<SampledFluid> sampled_serial;
   serial.sample(fs, sampled_serial);
 
   // parallel: round-robin particles, half the mesh each
   std::vector<ParticleShape> my_particles;
   std::vector<Amounts> my_amounts;
+  std::vector<double> my_heat;
   std::vector<std::size_t> my_index;
   for (std::size_t i = 0; i < k.particles.size(); ++i)
-    if (int(i % 2) == rank) my_particles.push_back(k.particles[i]), my_amounts.push_back(k.amounts[i]), my_index.push_back(i);
+    if (int(i % 2) == rank)
+      my_particles.push_back(k.particles[i]), my_amounts.push_back(k.amounts[i]), my_heat.push_back(heat[i]),
+          my_index.push_back(i);
   std::vector<double> Tp, onep, Up;
   const CellFluidFields fp = fields(mine, Tp, onep, Up);
   ParallelExchange parallel(mine, GetParam(), MPI_COMM_WORLD);
@@ -61,6 +67,7 @@ TEST_P(ParallelExchangeMpi, EqualsOneRank)
   ASSERT_EQ(parallel.global_particles(), std::int64_t(k.particles.size()));
   std::vector<Amounts> cells_parallel(std::size_t(mine.n_cells()), Amounts{});
   parallel.deposit(my_amounts, cells_parallel);
+  parallel.deposit_heat(my_heat, fp, cells_parallel);
   std::vector<SampledFluid> sampled_parallel;
   parallel.sample(fp, sampled_parallel);
 

@@ -3,6 +3,7 @@
 #include "OSspecific.H"
 #include "Time.H"
 #include "uniformDimensionedFields.H"
+#include "meltdem/coupling/particle_melting.h"
 
 #include <algorithm>
 #include <chrono>
@@ -113,11 +114,15 @@ Foam::meltdem::particleCoupling::particleCoupling
     subSteps_(0),
     exchangeSeconds_(0),
     lammpsSeconds_(0),
-    warnedStep_(false),
     thermal_
     (
         meltdemDict.subDict("physics").getOrDefault<bool>("energy", false)
     ),
+    Tlo_(0),
+    Thi_(0),
+    exchangeTime_(GREAT),
+    boundsSet_(false),
+    heated_(false),
     laser_(nullptr),
     haveLocated_(false)
 {
@@ -158,6 +163,10 @@ Foam::meltdem::particleCoupling::particleCoupling
             }
         }
     }
+
+    // off: the beam passes the particles (LMD, thesis 4.1: the powder's own absorption is
+    // negligible beside the pool's, and the ray grid is costly over a wide beam)
+    laserShadow_ = dict_.getOrDefault<bool>("laserShadow", true);
 
     // the case folder (not processorN/): LAMMPS reads one input for all ranks
     const fileName input(mesh.time().globalPath()/requiredWord(dict_, "lammpsInput"));
@@ -345,6 +354,38 @@ void Foam::meltdem::particleCoupling::advance(Time& runTime, const fluidFields& 
     };
     std::vector<mc::SampledFluid> sampled;
     exchange_->sample_global(cells, sampled);
+    if (thermal_)
+    {
+        // the range no exchange may leave, and the worst cell's C/G for the message
+        std::vector<mc::SampledFluid> mine;
+        exchange_->sample(cells, mine);
+        std::vector<mc::Amounts> g(start.size(), mc::Amounts{});
+        scalar Tplo = GREAT, Tphi = -GREAT;
+        for (std::size_t i = 0; i < start.size(); ++i)
+        {
+            if (!exchange_->inside(i)) continue;
+            g[i][0] = mc::particle_conductance(mine[i].fluid, 2*start[i].radius, start[i].v.data());
+            Tplo = min(Tplo, start[i].T);
+            Tphi = max(Tphi, start[i].T);
+        }
+        std::vector<mc::Amounts> gCells(std::size_t(nCells), mc::Amounts{});
+        exchange_->deposit(g, gCells);
+        const scalarField& V = mesh_.V();
+        std::vector<double> heatCapacity(V.size()), conductance(V.size());
+        forAll(V, celli)
+        {
+            heatCapacity[celli] = f.rhoCp[celli]*V[celli];
+            conductance[celli] = gCells[celli][0];
+        }
+        exchangeTime_ = returnReduce
+        (
+            mc::heat_exchange_time(heatCapacity.data(), conductance.data(), V.size()),
+            minOp<scalar>()
+        );
+        Tlo_ = min(returnReduce(Tplo, minOp<scalar>()), min(f.T).value());
+        Thi_ = max(returnReduce(Tphi, maxOp<scalar>()), max(f.T).value());
+        boundsSet_ = true;
+    }
     // solid metal near each particle (cells whose metal is mostly solid): a wall for it
     std::vector<mc::SolidSurface> solid;
     if (lammps_->solid_metal_wall())
@@ -362,26 +403,30 @@ void Foam::meltdem::particleCoupling::advance(Time& runTime, const fluidFields& 
     }
     // 2. whole DEM steps up to the fluid step
     const scalar dtDem = lammps_->timestep();
-    const scalar dtFluid = runTime.deltaTValue();
+    const scalar remaining = runTime.endTime().value() - runTime.value();
+    const scalar dtFluid =
+        remaining > 0 ? min(runTime.deltaTValue(), remaining) : runTime.deltaTValue();
     label n = fixedSubSteps_;
+    scalar dtSub = dtDem;
     if (!n)
     {
-        n = max(label(1), label(std::floor(dtFluid/dtDem*(1 + 1e-12))));
-        if (dtDem > dtFluid*(1 + 1e-12) && !warnedStep_)
-        {
-            WarningInFunction
-                << "the DEM step " << dtDem << " s exceeds the fluid step " << dtFluid
-                << " s the Courant limit allows; the fluid runs at the DEM step"
-                << " (lower the DEM step or maxCo)" << endl;
-            warnedStep_ = true;
-        }
+        // as many DEM steps as the fluid step needs, each shortened to fill it exactly
+        // (never longer than the DEM's own step): the fluid step is what its Courant
+        // limit allows, not rounded down to whole DEM steps (which, below 5 DEM steps,
+        // could never grow by the solver's factor 1.2)
+        n = max(label(1), label(std::ceil(dtFluid/dtDem*(1 - 1e-12))));
+        dtSub = dtFluid/n;
     }
-    const scalar remaining = runTime.endTime().value() - runTime.value();
-    n = min(n, max(label(1), label(std::ceil(remaining/dtDem - 1e-9))));
+    else
+    {
+        n = min(n, max(label(1), label(std::ceil(remaining/dtDem - 1e-9))));
+    }
 
     // the light each particle absorbs over the step (fixed, at mid-step)
     std::vector<double> light;
-    shadeParticles(runTime, start, n*dtDem, light);
+    shadeParticles(runTime, start, n*dtSub, light);
+    // a laser heats the continuum past both: no upper bound then
+    heated_ = laser_ != nullptr;
 
     std::unordered_map<std::int64_t, mc::FluidState> fluid;
     for (std::int64_t g = 0; g < exchange_->global_particles(); ++g)
@@ -394,13 +439,22 @@ void Foam::meltdem::particleCoupling::advance(Time& runTime, const fluidFields& 
         fs.thermal = thermal_;
     }
     lammps_->set_fluid(std::move(fluid));
+    std::unordered_map<std::int64_t, double> lightOf;
+    for (std::size_t g = 0; g < light.size(); ++g)
+    {
+        if (light[g] > 0) lightOf[exchange_->global_id(std::int64_t(g))] = light[g];
+    }
 
     const std::int64_t before = lammps_->particles();
     const double tLmp0 = lammps_->time();
     exchangeSeconds_ += seconds() - t0;
     const double w0 = seconds();
     std::vector<mc::ExchangeRecord> records;
+    const bool shortened = dtSub < dtDem*(1 - 1e-12);
+    if (shortened) lammps_->set_timestep(dtSub);
     lammps_->advance(int(n), records);
+    // back to the DEM's own step unless the input changed it meanwhile (fix powder/dt)
+    if (shortened && lammps_->timestep() == dtSub) lammps_->set_timestep(dtDem);
     lammpsSeconds_ += seconds() - w0;
     t0 = seconds();
     subSteps_ = n;
@@ -419,28 +473,53 @@ void Foam::meltdem::particleCoupling::advance(Time& runTime, const fluidFields& 
             << exit(FatalError);
     }
 
+    // a particle that melted away within the step stopped absorbing its light: the beam
+    // the shadow held back for the rest of the step heats its melt (the continuum gets
+    // it with the melt's enthalpy), so continuum + particles still absorb eta P
+    for (auto& r : records)
+    {
+        const auto it = lightOf.find(r.id);
+        if (r.mass > 0 || it == lightOf.end()) continue;
+        const double rest = it->second*elapsed - r.external_heat;
+        if (rest > 0)
+        {
+            r.external_heat += rest;
+            r.enthalpy_out += rest;
+        }
+    }
+
     // 3./4. where each particle is now: inside -> deposit, outside -> outflow
     relocate(shapesOf(records));
     inside_.clear();
     lost_.clear();
+    // the melt (mass, its enthalpy, momentum less the drag impulse) goes by the volume
+    // weights, the heat the particle absorbed comes from the cells by capacity weights
     std::vector<mc::Amounts> amounts;
+    std::vector<double> heat;
     std::vector<std::int64_t> leaving;
     for (std::size_t i = 0; i < records.size(); ++i)
     {
+        const mc::ExchangeRecord& r = records[i];
         if (exchange_->inside(i))
         {
-            inside_.push_back(records[i]);
-            amounts.push_back(mc::net_to_continuum(records[i]));
+            inside_.push_back(r);
+            amounts.push_back
+            (
+                mc::make_amounts(r.mass_out, r.enthalpy_out, r.momentum_out - r.impulse_from_fluid)
+            );
+            heat.push_back(r.heat_absorbed);
         }
         else
         {
-            lost_.push_back(records[i]);
+            lost_.push_back(r);
             amounts.push_back(mc::Amounts{});
-            if (records[i].mass > 0) leaving.push_back(records[i].id);
+            heat.push_back(0);
+            if (r.mass > 0) leaving.push_back(r.id);
         }
     }
     std::vector<mc::Amounts> deposited(std::size_t(nCells), mc::Amounts{});
     exchange_->deposit(amounts, deposited);
+    exchange_->deposit_heat(heat, cells, deposited);
 
     const scalarField& V = mesh_.V();
     forAll(V, celli)
@@ -453,6 +532,21 @@ void Foam::meltdem::particleCoupling::advance(Time& runTime, const fluidFields& 
         momentumSource_[celli] = vector(a[mc::kMomX], a[mc::kMomY], a[mc::kMomZ])*rate;
     }
 
+    // a cell cannot take more than its own volume of metal in one step: the volume
+    // source would then have to push the gas out at more than a cell per step (the
+    // fluid step collapses) and alpha overfills (the particle/cell size ratio is
+    // beyond what the distribution model spreads)
+    const scalar filled = gMax(volumeSource_.field())*elapsed;
+    if (filled > 1)
+    {
+        FatalErrorInFunction
+            << "the molten metal of one step fills a cell " << filled << " times: distribution "
+            << mc::to_string(model_) << " puts more metal into a cell than it holds (particles "
+            << "larger than the cells). Use distribution overlap (spreads each particle over "
+            << "all the cells it covers) or coarser cells, or a shorter fluid step (maxDeltaT)"
+            << exit(FatalError);
+    }
+
     std::int64_t nLeaving = std::int64_t(leaving.size());
     MPI_Allreduce(MPI_IN_PLACE, &nLeaving, 1, MPI_INT64_T, MPI_SUM, comm_);
     if (nLeaving)
@@ -463,7 +557,7 @@ void Foam::meltdem::particleCoupling::advance(Time& runTime, const fluidFields& 
     exchangeSeconds_ += seconds() - t0;
 
     Info<< "Particles: " << lammps_->particles() << " in " << n << " DEM steps of "
-        << dtDem << " s; handed over " << gSum(massSource_.field()*V)*elapsed
+        << dtSub << " s; handed over " << gSum(massSource_.field()*V)*elapsed
         << " kg of metal" << endl;
 }
 
@@ -578,6 +672,30 @@ void Foam::meltdem::particleCoupling::book(const functionObjects::meltdemBalance
         << " momentum (" << s.continuum_error[mc::kMomX] << " "
         << s.continuum_error[mc::kMomY] << " " << s.continuum_error[mc::kMomZ] << ")"
         << nl << endl;
+    checkBounded();
+}
+
+
+void Foam::meltdem::particleCoupling::checkBounded() const
+{
+    if (!thermal_ || !boundsSet_) return;
+    const volScalarField& T = mesh_.lookupObject<volScalarField>("T");
+    const scalar Tmin = min(T).value(), Tmax = max(T).value();
+    // 1 % of the range: what the bounded (TVD) schemes and the solver tolerance may leave
+    const scalar out = mc::temperature_overshoot(Tlo_, Thi_, Tmin, Tmax, 1e-2, !heated_);
+    if (out > 0)
+    {
+        FatalErrorInFunction
+            << "the continuum temperature left [" << Tlo_ << ", " << Thi_ << "] K, the range "
+            << "of continuum and particles before the step (T min/max now " << Tmin << ", "
+            << Tmax << " K): the particles exchanged more heat over the fluid step ("
+            << mesh_.time().deltaTValue() << " s, fluid frozen) than their cells hold. "
+            << "The worst cell's heat capacity over its particles' conductance is "
+            << exchangeTime_ << " s: lower maxDeltaT (controlDict) or demStepsPerFluidStep "
+            << "towards it, or spread the exchange over more cells (distribution overlap "
+            << "or neighbours, coarser cells)"
+            << exit(FatalError);
+    }
 }
 
 
@@ -592,7 +710,7 @@ void Foam::meltdem::particleCoupling::shadeParticles
     absorbed.clear();
     if (!laser_) return;
     const scalar tMid = runTime.value() + 0.5*dtPlanned;
-    if (!laser_->on(tMid) || laser_->power() <= 0)
+    if (!laserShadow_ || !laser_->on(tMid) || laser_->power() <= 0)
     {
         laser_->setShadow({}, 1);
         return;
@@ -605,9 +723,19 @@ void Foam::meltdem::particleCoupling::shadeParticles
     const vector& e = laser_->direction();
     beam.centre = Eigen::Vector3d(c.x(), c.y(), c.z());
     beam.direction = Eigen::Vector3d(e.x(), e.y(), e.z());
+    // particles that melted away in the last step (deleted at the next DEM step) cast
+    // no shadow any more
     std::vector<mc::BeamParticle> local;
+    std::vector<std::size_t> solid;
     local.reserve(start.size());
-    for (const auto& r : start) local.push_back({r.x, r.radius});
+    for (std::size_t i = 0; i < start.size(); ++i)
+    {
+        if (start[i].mass > 0)
+        {
+            local.push_back({start[i].x, start[i].radius});
+            solid.push_back(i);
+        }
+    }
     shadow_ = mc::shade_particles(comm_, beam, local);
 
     // by global index (rank order, as the exchange numbers them)
@@ -617,7 +745,10 @@ void Foam::meltdem::particleCoupling::shadeParticles
     MPI_Comm_rank(comm_, &rank);
     if (rank == 0) offset = 0;
     absorbed.assign(std::size_t(exchange_->global_particles()), 0.0);
-    for (long i = 0; i < n; ++i) absorbed[std::size_t(offset + i)] = shadow_.absorbed[std::size_t(i)];
+    for (std::size_t k = 0; k < solid.size(); ++k)
+    {
+        absorbed[std::size_t(offset) + solid[k]] = shadow_.absorbed[k];
+    }
     if (!absorbed.empty())
     {
         MPI_Allreduce(MPI_IN_PLACE, absorbed.data(), int(absorbed.size()), MPI_DOUBLE, MPI_SUM, comm_);

@@ -29,8 +29,13 @@ struct SampledFluid {
   double liquid_fraction = 0.0;  // of that metal
 };
 
-// Weighted mean of the cell fields over `weights` (which sum to 1). Throws
-// std::invalid_argument for empty weights or a missing required field.
+// Weighted mean of the cell fields over `weights` (which sum to 1). The temperature is
+// the heat-capacity-weighted mean sum w rho cp T / sum w rho cp (the temperature the
+// covered cells would reach if mixed; the plain mean where all capacities are zero): a
+// particle half in melt, half in gas sees the melt's temperature, not the middle, and
+// the heat it takes is drawn from the cells by the same w rho cp weights
+// (ParallelExchange::deposit_heat), so gas beside the melt gives almost none of it.
+// Throws std::invalid_argument for empty weights or a missing required field.
 SampledFluid sample_fluid(const std::vector<CellWeight> &weights, const CellFluidFields &fields);
 
 // FluidStateProvider over a mesh: particle i (radius radii[i]) sees the fields averaged
