@@ -200,8 +200,9 @@ run             0
 """)
 
 
-def build(case, variant, cell=None, bed=None, track=None, distribution="overlap", np_=1):
+def build(case, variant, cell=None, bed=None, track=None, distribution="overlap", np_=1, gas_cp=None, fluid_dt=None):
     v = dict(VARIANTS[variant])
+    gas_cp = gas_cp or GAS_CP_CASE
     if cell:
         v["cell"] = cell
     if track:
@@ -221,7 +222,8 @@ def build(case, variant, cell=None, bed=None, track=None, distribution="overlap"
     dt_cap = 0.5 * np.sqrt(0.5 * (RHO + GAS["rho"]) * h ** 3 / (2 * np.pi * SIGMA0))
     # fixed sub-cycles (see README): the fluid step is n_sub DEM steps (FLUID_DT; below the
     # capillary limit when surface tension is on)
-    fluid_dt = min(FLUID_DT, dt_cap) if SURFACE else FLUID_DT
+    fluid_dt = fluid_dt or FLUID_DT
+    fluid_dt = min(fluid_dt, dt_cap) if SURFACE else fluid_dt
     n_sub = max(1, int(round(fluid_dt / DEM_DT)))
     cc.box_mesh(case, (0.0, -v["sub"], 0.0), (v["lx"], v["top"], v["lz"]), n,
                 {"substrate": ("wall", ["ymin"]), "atmosphere": ("patch", ["ymax"]),
@@ -275,7 +277,7 @@ def build(case, variant, cell=None, bed=None, track=None, distribution="overlap"
                                              marangoni="on" if SURFACE else "off", laser="on", particles="on"),
                           surface=dict(sigma0=SIGMA0, dSigmadT=DSIGMA, Tsigma0=TMELT, sigmaMin=0.2),
                           extra=f"""metal {{ cp {CP!r}; k {K!r}; L {LATENT!r}; Tsolidus {TSOL!r}; Tliquidus {TLIQ!r}; }}
-gas {{ cp {GAS_CP_CASE!r}; k {GAS['k']!r}; }}
+gas {{ cp {gas_cp!r}; k {GAS['k']!r}; }}
 darcy {{ C 1e10; b 1e-3; }}
 energyControls {{ nCorrectors 50; tolerance 1e-13; }}
 {laser}
@@ -290,7 +292,7 @@ particles
     lammps_input(case, v, dump_every)
     meta = dict(variant=variant, n_cells=list(n), particles=nparticles, t_scan_s=t_scan, t_end_s=t_end,
                 laser_x0_m=v["x0"], laser_x1_m=v["x1"], track_z_m=zc, dt_capillary_s=dt_cap,
-                distribution=distribution, bed_dump=os.path.abspath(dump), **{k: v[k] for k in
+                distribution=distribution, bed_dump=os.path.abspath(dump), gas_cp=gas_cp, fluid_dt_s=n_sub * DEM_DT, **{k: v[k] for k in
                 ("lx", "lz", "top", "sub", "cell", "cool", "write")})
     json.dump(meta, open(os.path.join(case, "scene.json"), "w"), indent=1)
     print(f"case {case}: {variant}, {n[0]}x{n[1]}x{n[2]} cells of {h * 1e6:g} um, {nparticles} particles, "
@@ -562,11 +564,14 @@ def main(argv=None):
     ap.add_argument("--bed", help="powder-bed dump to use instead of pouring one")
     ap.add_argument("--track", type=float, help="track length [m]")
     ap.add_argument("--distribution", default="overlap", choices=["centre", "neighbours", "overlap"])
+    ap.add_argument("--gas-cp", type=float, help="gas heat capacity [J/kg/K] (default argon's 520)")
+    ap.add_argument("--fluid-dt", type=float, help=f"fluid step [s] (default {FLUID_DT:g})")
     a = ap.parse_args(argv)
     case = os.path.abspath(a.case)
     variant = "full" if a.full else "ci"
     if a.command in ("build", "all"):
-        build(case, variant, a.cell, a.bed and os.path.abspath(a.bed), a.track, a.distribution, a.np)
+        build(case, variant, a.cell, a.bed and os.path.abspath(a.bed), a.track, a.distribution, a.np, a.gas_cp,
+              a.fluid_dt)
     if a.command in ("run", "all"):
         run(case, a.np)
     if a.command in ("analyse", "all"):
