@@ -2,8 +2,9 @@
 """Cells per particle diameter x particle -> cell model on a COUPLED case: wall time vs the
 error of the drag force and of the heat a particle takes from the gas (issue 6, speed-accuracy).
 
-    /usr/bin/python3 bench/cells_per_diameter.py [--bin build/bin] [--cpd 0.5,1,2,4,8]
-        [--models centre,neighbours,overlap] [--t-end 2e-3] [--quick] [--out bench] [--keep]
+    /usr/bin/python3 bench/cells_per_diameter.py [--bin build/bin] [--cpd 0.125,0.25,0.5,1,2,4,8]
+        [--models centre,neighbours,overlap] [--t-end 1e-3] [--max-steps 5000] [--max-run 300]
+        [--timeout 600] [--quick] [--out bench] [--keep]
 
 The question a user asks: how fine may the mesh be around the grains, and with which
 distribution model, before the coupling's answer degrades? In the unresolved coupling the
@@ -34,6 +35,14 @@ Results, each the mean over the last 10 % of the run (the same window in every r
   * heat rate into the grain (fix powder/melt f_melt[6] per time) vs the reference;
   * the coldest and hottest gas of the run (below the grain's 300 K or above the 1000 K gas:
     the explicit exchange overshoots, the onset of the instability that crashes `centre`).
+Stability: the heat exchange is explicit (the gas state is frozen over the fluid step), so a
+fluid step longer than the heat exchange time of the cells a grain deposits into, rho cp
+V_deposit / (h A) (~ d^2 / (12 alpha) = 5.6e-7 s here once the deposit is the grain's own
+volume), drives the gas beyond the grain's temperature. meltdemFoam's bound check
+(particleCoupling::checkBounded) then stops at once and names that time: the run is then
+repeated at half of it, if it costs at most --max-steps steps and an estimated --max-run
+seconds; otherwise its cost is estimated (start-up + cells x steps x the cost per
+cell-step of the largest run so far) and it is listed as not run. The step a fine mesh needs is part of its cost.
 Reference: the same LAMMPS input run standalone with the uniform undisturbed gas
 (`fix powder/melt ... ambient 1000 0.18 0.12 1.8e-4 1000 0 0 0`), i.e. the drag and
 Ranz-Marshall laws at the far-field gas state (the analytic Stokes drag 3 pi mu d v and
@@ -41,8 +50,8 @@ Nu = 2 heat are printed for comparison). The drift between the last two 10 % win
 printed as a steadiness check.
 Wall time: the whole solver run (blockMesh excluded), serial, --timeout per run; the
 machine is shared, so absolute times are loaded-machine times: compare the ratios. About
-15 min on a loaded machine (c = 8 dominates); --quick (c = 0.5 and 2, 0.4 ms) about 30 s:
-the smoke test.
+15 min on a loaded machine; --quick (c = 0.5 and 1, 0.4 ms, reruns of at most 300 steps)
+about 20 s: the smoke test.
 """
 import argparse
 import math
@@ -70,12 +79,16 @@ ap.add_argument("--cpd", default="0.125,0.25,0.5,1,2,4,8", help="cells per parti
 ap.add_argument("--models", default="centre,neighbours,overlap")
 ap.add_argument("--t-end", type=float, default=1e-3)
 ap.add_argument("--timeout", type=float, default=600, help="seconds per coupled run")
-ap.add_argument("--quick", action="store_true", help="smoke test: c = 0.5, 2 and 0.4 ms")
+ap.add_argument("--max-steps", type=int, default=5000,
+                help="largest number of fluid steps of a rerun at the step the bound check asks for")
+ap.add_argument("--max-run", type=float, default=400,
+                help="largest estimated wall time (s) of such a rerun")
+ap.add_argument("--quick", action="store_true", help="smoke test: c = 0.5, 1, 0.4 ms, reruns of <= 300 steps")
 ap.add_argument("--out", default=HERE)
 ap.add_argument("--keep", action="store_true", help="keep the cases (printed)")
 args = ap.parse_args()
 if args.quick:
-    args.cpd, args.t_end = "0.5,2", 4e-4
+    args.cpd, args.t_end, args.max_steps = "0.5,1", 4e-4, 300
 os.environ["MELTDEM_BIN"] = os.path.abspath(args.bin)
 os.environ.setdefault("WM_PROJECT_DIR", "/usr/share/openfoam")
 for exe in ("meltdemFoam", "meltdem-lmp"):
@@ -140,13 +153,13 @@ thermo 1
 """
 
 
-def build(case, model, c):
+def build(case, model, c, dt=DT):
     """The channel_case of coupledcase with the held grain, then the graded mesh."""
     centre = W / 2  # placeholder; the grain's position is set once the mesh is known
     particle = dict(d=D, rho=RHO_P, cp=CP_P, Tm=5000.0, L=2.7e5, T0=T_P, x=centre, y=centre, z=centre,
                     v=(0.0, -V_SLIP, 0.0), held=True)
     cc.channel_case(case, model, particle, channel=dict(lx=W, ly=W, lz=W, h=W / 4, u=0.0), gas=GAS,
-                    t_end=args.t_end, fluid_dt=DT, dem_dt=DT, extra_lammps=LAMMPS_OUT)
+                    t_end=args.t_end, fluid_dt=dt, dem_dt=dt, extra_lammps=LAMMPS_OUT)
     cells, h, pos = graded_mesh(case, c)
     p = os.path.join(case, "in.particles")
     txt = open(p).read()
@@ -188,9 +201,14 @@ def results(log):
     return out + [t[gone[0]] if len(gone) else None]
 
 
-def coupled(model, c):
-    case = os.path.join(work, f"{model}_c{c}")
-    cells, h = build(case, model, c)
+def min_max_T(text):
+    m = re.findall(r"T min/max now (\S+), (\S+) K", text)
+    return f"{float(m[-1][0]):.4g}-{float(m[-1][1]):.4g}" if m else "?"
+
+
+def coupled(model, c, dt=DT):
+    case = os.path.join(work, f"{model}_c{c}_dt{dt:g}")
+    cells, h = build(case, model, c, dt)
     t0 = time.perf_counter()
     try:
         with open(os.path.join(case, "log.meltdemFoam"), "w") as log:
@@ -200,11 +218,16 @@ def coupled(model, c):
     except subprocess.TimeoutExpired:
         rc = "timeout"
     wall = time.perf_counter() - t0
-    r = dict(model=model, c=c, cells=cells, h=h, wall=wall, rc=rc, gone=None)
+    r = dict(model=model, c=c, cells=cells, h=h, wall=wall, rc=rc, gone=None, dt=dt)
     text = open(os.path.join(case, "log.meltdemFoam")).read()
     r["steps_done"] = len(re.findall(r"\nTime = ", text))
     fatal = re.search(r"FOAM FATAL[^\n]*\n(?:[^\n]*\n){0,4}", text)
+    # the coupling's bound check (particleCoupling::checkBounded): the heat exchange time it names
+    tau = re.search(r"heat capacity over its particles' conductance is (\S+) s", text)
+    r["tau"] = float(tau.group(1)) if tau else None
     r["why"] = (f"timed out after {args.timeout:g} s" if rc == "timeout" else
+                f"the coupling's bound check (gas {min_max_T(text)} K outside [{T_P:g}, {GAS['T']:g}]; "
+                f"its heat exchange time {r['tau']:.2g} s < fluid step)" if tau else
                 "floating-point exception (SIGFPE)" if "sigFpe" in text else
                 " ".join(fatal.group(0).split()) if fatal else f"exit code {rc}")
     tmin = re.findall(r"T min/max = (\S+), (\S+)", text)
@@ -243,6 +266,17 @@ def standalone():
     return results(os.path.join(alone, "log.lammps"))
 
 
+def build_stamp():
+    """git commit of the sources and modification time of the solver used (a rebuild during the run shows)"""
+    head = subprocess.run(["git", "-C", ROOT, "rev-parse", "--short", "HEAD"], capture_output=True, text=True).stdout.strip()
+    dirty = subprocess.run(["git", "-C", ROOT, "status", "--porcelain", "--untracked-files=no", "coupling",
+                            "foam-src", "lammps-src"], capture_output=True, text=True).stdout.strip()
+    mtime = time.strftime("%Y-%m-%d %H:%M:%S UTC", time.gmtime(os.path.getmtime(os.path.join(args.bin, "meltdemFoam"))))
+    return (f"sources at the start {head}{' + uncommitted coupling changes' if dirty else ''}, "
+            f"meltdemFoam built {mtime}")
+
+
+STAMP = build_stamp()
 F_ref, Q_ref, F_ref_before, Q_ref_before, _ = standalone()
 re_p = GAS["rho"] * V_SLIP * D / GAS["mu"]
 F_stokes = 3 * math.pi * GAS["mu"] * D * V_SLIP
@@ -250,18 +284,53 @@ Q_nu2 = 2 * GAS["k"] * math.pi * D * (GAS["T"] - T_P)
 print(f"reference (standalone ambient): drag {F_ref:.6g} N (Stokes {F_stokes:.6g}), heat rate {Q_ref:.6g} W "
       f"(Nu = 2 at T0: {Q_nu2:.6g}); Re {re_p:.3g}", flush=True)
 
+def nice_step(t):
+    """t rounded down to two significant digits"""
+    k = math.floor(math.log10(t)) - 1
+    return math.floor(t / 10.0**k * (1 + 1e-9)) * 10.0**k
+
+
+def report(r):
+    c, model = r["c"], r["model"]
+    if r["ok"]:
+            print(f"  c {c:g} {model:10s}: {r['cells']:6d} cells, {r['wall']:7.2f} s, drag {r['F']:.5g} N "
+                  f"({r['F'] / F_ref - 1:+.2%}), heat {r['Q']:.5g} W ({r['Q'] / Q_ref - 1:+.2%}), "
+                  f"gas {r['T_min']:.4g}-{r['T_max']:.4g} K", flush=True)
+    elif r.get("estimate"):
+        print(f"  c {c:g} {model:10s}: not run: {r['why']}", flush=True)
+    else:
+        print(f"  c {c:g} {model:10s}: FAILED after {r['steps_done']} steps, {r['wall']:.1f} s: {r['why']}",
+              flush=True)
+
+
 out = []
 for c in [float(x) for x in args.cpd.split(",")]:
     for model in args.models.split(","):
         r = coupled(model, c)
         out.append(r)
-        if r["ok"]:
-            print(f"  c {c:g} {model:10s}: {r['cells']:6d} cells, {r['wall']:7.2f} s, drag {r['F']:.5g} N "
-                  f"({r['F'] / F_ref - 1:+.2%}), heat {r['Q']:.5g} W ({r['Q'] / Q_ref - 1:+.2%}), "
-                  f"gas {r['T_min']:.4g}-{r['T_max']:.4g} K", flush=True)
+        report(r)
+        if r["tau"] is None:
+            continue
+        # rerun at the fluid step the bound check asks for (half its heat exchange time), when
+        # that takes at most --max-steps steps; otherwise estimate the cost from the runs so far
+        dt = nice_step(r["tau"] / 2)
+        steps = math.ceil(args.t_end / dt - 1e-6)
+        # cost model: start-up (this run's wall time: it stopped after one step) + the cost per
+        # cell-step of the largest run so far (start-up, ~1 s, taken off)
+        done = [x for x in out if x["ok"]]
+        big = max(done, key=lambda x: x["cells"] * x["steps"]) if done else None
+        per = max(big["wall"] - r["wall"], 0.1) / (big["cells"] * big["steps"]) if big else np.nan
+        est = r["wall"] + per * r["cells"] * steps
+        if steps <= args.max_steps and not est > args.max_run:
+            r2 = coupled(model, c, dt)
         else:
-            print(f"  c {c:g} {model:10s}: FAILED after {r['steps_done']} steps, {r['wall']:.1f} s: {r['why']}",
-                  flush=True)
+            r2 = dict(model=model, c=c, cells=r["cells"], dt=dt, ok=False, estimate=True, steps_done=0,
+                      wall=est, rc=None, gone=None, T_min=np.nan, T_max=np.nan,
+                      why=f"needs a fluid step <= {dt:.2g} s: {steps} steps, ~{est:.0f} s "
+                          f"estimated (start-up + cells x steps x the cost per cell-step of the largest run so far) "
+                          f"> --max-steps {args.max_steps} or --max-run {args.max_run:g} s")
+        out.append(r2)
+        report(r2)
 
 os.makedirs(args.out, exist_ok=True)
 md = os.path.join(args.out, "cells_per_diameter.md")
@@ -269,7 +338,10 @@ lines = ["# Cells per particle diameter x distribution model, coupled: cost vs a
          "Generated by bench/cells_per_diameter.py" + (" --quick (smoke test: not the documented result)"
                                                         if args.quick else "")
          + ". Serial, shared 2-core machine under load from other jobs (load average 6-9 during the run): "
-         "absolute wall times are loaded-machine times (+-30 %), compare ratios within the table.", "",
+         "absolute wall times are loaded-machine times (+-30 %), compare ratios within the table. Build: " + STAMP
+         + (" -- REBUILT DURING THE RUN (now: " + build_stamp() + "): mixed results"
+            if build_stamp().split("built")[1] != STAMP.split("built")[1] else "")
+         + ".", "",
          f"A grain d = {D * 1e6:g} um held in gas at rest, slipping at {V_SLIP:g} m/s (Re {re_p:.2g}), {T_P:g} K in "
          f"{GAS['T']:g} K gas (nu = alpha = {GAS['mu'] / GAS['rho']:.2g} m2/s, rho cp = {GAS['rho'] * GAS['cp']:g} J/m3 K); "
          f"cube {W / D:g} d, graded mesh with a uniform core of cell size d / c around the grain; "
@@ -278,33 +350,49 @@ lines = ["# Cells per particle diameter x distribution model, coupled: cost vs a
          f"Reference: the same LAMMPS input standalone with the undisturbed gas (`ambient`): drag "
          f"{F_ref:.6g} N (analytic Stokes 3 pi mu d v = {F_stokes:.6g} N), heat rate {Q_ref:.6g} W "
          f"(Nu = 2 at the initial temperature difference: {Q_nu2:.6g} W).", "",
-         "| cells / d | model | cells | V_p / V_cell | fluid steps | wall (s) | exchange (s) | drag (N) | reference (N) | "
-         "error | heat rate (W) | reference (W) | error | gas T min / max (K) | drift of the last two windows "
-         "(drag / heat) |", "|" + "---|" * 15]
+         "The fluid step is 10 us; where the coupling's bound check stops a run (the gas left the range of gas "
+         "and grain temperatures: the explicit heat exchange overshoots), the run is repeated at a fluid step of half "
+         "the heat exchange time the check names (two digits, rounded down) if that takes at most "
+         f"{args.max_steps} steps and an estimated {args.max_run:g} s; else its cost is estimated (start-up + cells "
+         "x steps x the cost per cell-step of the largest run before it).", "",
+         "| cells / d | model | cells | V_p / V_cell | fluid step (s) | fluid steps | wall (s) | exchange (s) | drag (N) | "
+         "reference (N) | error | heat rate (W) | reference (W) | error | gas T min / max (K) | drift of the last "
+         "two windows (drag / heat) |", "|" + "---|" * 16]
 for r in out:
     vr = math.pi / 6 * r["c"] ** 3
-    if not r["ok"]:
-        lines.append(f"| {r['c']:g} | {r['model']} | {r['cells']} | {vr:.3g} | {r['steps_done']} | {r['wall']:.1f} | - | "
-                     f"FAILED: {r['why']} | {F_ref:.5g} | - | - | {Q_ref:.5g} | - | "
-                     f"{r['T_min']:.4g} / {r['T_max']:.4g} | - |")
-        continue
-    lines.append(
-        f"| {r['c']:g} | {r['model']} | {r['cells']} | {vr:.3g} | {r['steps']} | {r['wall']:.1f} | "
-        f"{r['exchange']:.2f} | {r['F']:.5g} | {F_ref:.5g} | {r['F'] / F_ref - 1:+.1%} | {r['Q']:.5g} | {Q_ref:.5g} | "
-        f"{r['Q'] / Q_ref - 1:+.1%} | {r['T_min']:.4g} / {r['T_max']:.4g} | "
-        f"{r['F'] / r['F_before'] - 1:+.1e} / {r['Q'] / r['Q_before'] - 1:+.1e} |")
+    head = f"| {r['c']:g} | {r['model']} | {r['cells']} | {vr:.3g} | {r['dt']:.2g} |"
+    if r.get("estimate"):
+        lines.append(f"{head} - | ~{r['wall']:.0f} (estimate) | - | not run: {r['why']} | {F_ref:.5g} | - | - | "
+                     f"{Q_ref:.5g} | - | - | - |")
+    elif not r["ok"]:
+        what = "stopped" if r["tau"] else "FAILED"
+        lines.append(f"{head} {r['steps_done']} | {r['wall']:.1f} | - | {what}: {r['why']} | {F_ref:.5g} | - | - | "
+                     f"{Q_ref:.5g} | - | {r['T_min']:.4g} / {r['T_max']:.4g} | - |")
+    else:
+        lines.append(
+            f"{head} {r['steps']} | {r['wall']:.1f} | {r['exchange']:.2f} | {r['F']:.5g} | {F_ref:.5g} | "
+            f"{r['F'] / F_ref - 1:+.1%} | {r['Q']:.5g} | {Q_ref:.5g} | {r['Q'] / Q_ref - 1:+.1%} | "
+            f"{r['T_min']:.4g} / {r['T_max']:.4g} | {r['F'] / r['F_before'] - 1:+.1e} / {r['Q'] / r['Q_before'] - 1:+.1e} |")
 lines += ["", "## Summary", ""]
 for model in args.models.split(","):
     rs = [r for r in out if r["model"] == model]
     good = [r for r in rs if r["ok"]]
-    bad = [r for r in rs if not r["ok"]]
     txt = f"- `{model}`: "
     if good:
-        txt += ("runs at c = " + ", ".join(f"{r['c']:g}" for r in good) + " with drag / heat errors "
-                + ", ".join(f"{r['F'] / F_ref - 1:+.0%} / {r['Q'] / Q_ref - 1:+.0%}" for r in good)
-                + f" ({good[0]['wall']:.1f} to {good[-1]['wall']:.1f} s)")
-    if bad:
-        txt += ("; " if good else "") + "diverges at c = " + ", ".join(f"{r['c']:g}" for r in bad)
+        txt += "runs (c: drag / heat error, wall) " + "; ".join(
+            f"{r['c']:g}" + (f" at {r['dt']:.2g} s" if r["dt"] != DT else "")
+            + f": {r['F'] / F_ref - 1:+.0%} / {r['Q'] / Q_ref - 1:+.0%}, {r['wall']:.1f} s" for r in good)
+    stopped = [r for r in rs if not r["ok"] and not r.get("estimate") and r["tau"]]
+    if stopped:
+        txt += ("; " if good else "") + "stopped by the bound check at 10 us for c = " + ", ".join(
+            f"{r['c']:g}" for r in stopped)
+    est = [r for r in rs if r.get("estimate")]
+    if est:
+        txt += "; too expensive to run: " + ", ".join(
+            f"c = {r['c']:g} ({r['dt']:.2g} s step, ~{r['wall']:.0f} s)" for r in est)
+    failed = [r for r in rs if not r["ok"] and not r.get("estimate") and not r["tau"]]
+    if failed:
+        txt += "; FAILED otherwise: c = " + ", ".join(f"{r['c']:g} ({r['why']})" for r in failed)
     lines.append(txt + ".")
 lines.append("")
 open(md, "w").write("\n".join(lines))
@@ -319,25 +407,25 @@ marks = {"centre": "o", "neighbours": "s", "overlap": "^"}
 for k, model in enumerate(args.models.split(",")):
     m = marks.get(model, "x")
     rs = [r for r in out if r["model"] == model and r["ok"]]
-    bad = [r for r in out if r["model"] == model and not r["ok"]]
+    bad = [r for r in out if r["model"] == model and not r["ok"] and not any(x["c"] == r["c"] for x in rs)]
     # the three models coincide where the grain lies inside one cell: shift the markers apart
     shift = 2 ** (0.06 * (k - 1))
     for ax, key, ref in ((axes[0], "F", F_ref), (axes[1], "Q", Q_ref)):
         line, = ax.plot([r["c"] * shift for r in rs], [100 * (r[key] / ref - 1) for r in rs], m + "-", label=model)
         if bad:
             ax.plot([r["c"] * shift for r in bad], [-98] * len(bad), "x", ms=10, mew=2, color=line.get_color(),
-                    label=f"{model}: diverged")
+                    label=f"{model}: stopped / not run")
     if rs:
         axes[2].loglog([r["wall"] for r in rs], [max(abs(r["F"] / F_ref - 1), abs(r["Q"] / Q_ref - 1)) for r in rs],
                        m + "-", label=model)
         for r in rs:
-            axes[2].annotate(f"{r['c']:g}", (r["wall"], max(abs(r["F"] / F_ref - 1), abs(r["Q"] / Q_ref - 1))),
+            axes[2].annotate(f"{r['c']:g}" + (f" ({r['dt']:.2g} s)" if r["dt"] != DT else ""), (r["wall"], max(abs(r["F"] / F_ref - 1), abs(r["Q"] / Q_ref - 1))),
                              textcoords="offset points", xytext=(4, 3 - 9 * k), fontsize=8)
 for ax, t in zip(axes[:2], ("drag force error vs undisturbed gas (%)", "heat rate error vs undisturbed gas (%)")):
     ax.set_xscale("log", base=2)
     ax.set_ylim(-100, 5)
     ax.set_xlabel("cells per particle diameter")
-    ax.set_ylabel("error (%)   (x: diverged)")
+    ax.set_ylabel("error (%)   (x: stopped or not run)")
     ax.set_title(t)
     ax.axhline(0, color="grey", lw=0.5)
     ax.grid(True, which="both", alpha=0.3)
