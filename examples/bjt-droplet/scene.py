@@ -7,6 +7,7 @@ section 4.2, configuration of section 4.1, tables 2-4), isothermal (no energy eq
     scene.py run      CASE [--np N]
     scene.py analyse  CASE
     scene.py all      CASE [--ci | --full] [--np N] [build options]
+    scene.py plot     CASE      (CASE/sections.png: vertical sections through the droplet axis)
 
 CASE holds bed/ (the DEM pre-processing step: in.bed, settled into bed.data) and one OpenFOAM
 case per droplet speed (v1/, v10/, v50/). meltdemFoam's two VOF phases are "metal" (here the
@@ -353,6 +354,10 @@ def analyse_speed(case, p, v):
 
     def footprint(a3):
         return math.sqrt((a3[layer] >= 0.5).any(axis=0).sum() * h[0] * h[1] / math.pi)
+
+    def wetted(a3):
+        # columns holding at least 1 um of binder (a film thinner than a cell has alpha < 0.5)
+        return math.sqrt((a3.sum(axis=0) * h[2] >= 1e-6).sum() * h[0] * h[1] / math.pi)
     lowest_start = DROP_ABOVE - DROP_D / 2     # droplet bottom above the substrate at t = 0
     last = times[-1]
     a = fc.read_internal(os.path.join(c, last, "alpha.metal"))
@@ -366,7 +371,7 @@ def analyse_speed(case, p, v):
         m = np.sum(at)
         zlow = Z[at >= 0.5].min() - h[2] / 2 - ZFLOOR if (at >= 0.5).any() else 0.0
         fall.append((float(t), float(np.sum(at * Z) / m), float(np.sum(at * Ut[:, 2]) / m), zlow,
-                     footprint(at.reshape(nz, ny, nx))))
+                     footprint(at.reshape(nz, ny, nx)), wetted(at.reshape(nz, ny, nx))))
     fall = np.array(fall)
     # reference: the droplet's centroid falls with v0 + g t, slowed by the gas drag
     # (Schiller-Naumann on the 80 um sphere, gas table 3), before its bottom reaches an obstacle
@@ -396,6 +401,9 @@ def analyse_speed(case, p, v):
     res["footprint_radius_um"] = footprint(a3) * 1e6
     res["footprint_radius_largest_um"] = float(fall[:, 4].max() * 1e6)
     res["footprint_radius_largest_time_ms"] = float(fall[np.argmax(fall[:, 4]), 0] * 1e3)
+    res["wetted_radius_um"] = wetted(a3) * 1e6
+    res["wetted_radius_largest_um"] = float(fall[:, 5].max() * 1e6)
+    res["wetted_radius_largest_time_ms"] = float(fall[np.argmax(fall[:, 5]), 0] * 1e3)
     # penetration history: when the binder front reached the substrate
     reached = fall[fall[:, 3] <= 0.0, 0]
     res["binder_reaches_substrate_ms"] = float(reached[0] * 1e3) if reached.size else float("nan")
@@ -432,7 +440,7 @@ def analyse_speed(case, p, v):
             res["ledger_mass_continuum_error_max"] = float(np.max(np.abs(rows["mass_continuum_error"])))
             res["ledger_momentum_continuum_error_max"] = float(max(np.max(np.abs(rows[f"mom_{k}_continuum_error"]))
                                                                    for k in "xyz"))
-    np.savetxt(os.path.join(c, "fall.txt"), fall, header="time centroid_z centroid_w lowest_binder_above_substrate footprint_radius")
+    np.savetxt(os.path.join(c, "fall.txt"), fall, header="time centroid_z centroid_w lowest_binder_above_substrate footprint_radius wetted_radius")
     return res
 
 
@@ -456,9 +464,48 @@ def analyse(case):
     return out
 
 
+def plot(case, out=None):
+    """vertical section through the droplet axis (y = L/2) at the start and the end of each speed:
+    binder fraction and the grains cut by the plane"""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    from matplotlib.patches import Circle
+    p = json.load(open(os.path.join(case, "scene.json")))
+    nx, ny, nz = mesh_counts(p)
+    X, Y, Z, h = cell_centres(p)
+    j = ny // 2
+    fig, axes = plt.subplots(len(p["speeds"]), 2, figsize=(9, 2.9 * len(p["speeds"])), squeeze=False)
+    for row, v in enumerate(p["speeds"]):
+        c = os.path.join(case, speed_dir(v))
+        times = fc.time_dirs(c)
+        snaps = read_dump(os.path.join(c, "traj.dump")) if p["particles"] == "on" else []
+        for col, (t, snap) in enumerate([(times[0], snaps[0] if snaps else None),
+                                         (times[-1], snaps[-1] if snaps else None)]):
+            ax = axes[row][col]
+            a = fc.read_internal(os.path.join(c, t, "alpha.metal")).reshape(nz, ny, nx)[:, j, :]
+            ax.imshow(a, origin="lower", cmap="Blues", vmin=0, vmax=1,
+                      extent=(0, p["L"] * 1e6, ZFLOOR * 1e6, p["ztop"] * 1e6))
+            if snap is not None:
+                s = snap[1]
+                dy = np.abs(s["y"] - p["L"] / 2)
+                for x, z, r, d in zip(s["x"], s["z"], s["radius"], dy):
+                    if d < r:
+                        ax.add_patch(Circle((x * 1e6, z * 1e6), math.sqrt(r * r - d * d) * 1e6,
+                                            color="0.35", alpha=0.8))
+            ax.axhline(ZFLOOR * 1e6, color="k", lw=1)
+            ax.set_title(f"{v:g} m/s, t = {float(t) * 1e3:.3f} ms", fontsize=9)
+            ax.set_xlabel("x [um]")
+            ax.set_ylabel("z [um]")
+    fig.tight_layout()
+    out = out or os.path.join(case, "sections.png")
+    fig.savefig(out, dpi=110)
+    print("wrote", out)
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("command", choices=["build", "run", "analyse", "all"])
+    ap.add_argument("command", choices=["build", "run", "analyse", "all", "plot"])
     ap.add_argument("case")
     g = ap.add_mutually_exclusive_group()
     g.add_argument("--ci", action="store_true")
@@ -480,6 +527,8 @@ def main(argv=None):
         run(case, a.np)
     if a.command in ("analyse", "all"):
         analyse(case)
+    if a.command == "plot":
+        plot(case)
 
 
 if __name__ == "__main__":
