@@ -238,9 +238,10 @@ def read_dump(case):
 
 
 def results_dirs(case):
-    if os.path.isdir(os.path.join(case, "processor0")):
+    dirs = [d for d in fc.time_dirs(case) if float(d) > 0 and os.path.exists(os.path.join(case, d, "T"))]
+    if not dirs and os.path.isdir(os.path.join(case, "processor0")):
         raise SystemExit("analyse reads the reconstructed case: run reconstructPar first")
-    return [d for d in fc.time_dirs(case) if float(d) > 0 and os.path.exists(os.path.join(case, d, "T"))]
+    return dirs
 
 
 def pool_stats(case, dx, n):
@@ -346,6 +347,8 @@ def analyse(case):
     if os.path.exists(os.path.join(case, "wall_seconds")):
         w = open(os.path.join(case, "wall_seconds")).read().split()
         s["wall_s"], s["ranks"] = float(w[0]), int(w[1])
+    cpu = re.findall(r"ExecutionTime = (\S+) s", open(os.path.join(case, "log.meltdemFoam")).read())
+    s["solver_cpu_s"] = float(cpu[-1]) if cpu else None
     s["pool_time_ms"] = [float(x) for x in pool[:, 0] * 1e3]
     s["pool_diameter_um"] = [float(x) for x in pool[:, 1] * 1e6]
     s["pool_depth_um"] = [float(x) for x in pool[:, 2] * 1e6]
@@ -379,7 +382,8 @@ def print_summary(s):
     print(f"DED stream, {s['cells']} cells of {s['cell_um']:g} um ({s['cells_per_particle_diameter']:.2f} per "
           f"particle diameter), laser {'off at 0.012 ms' if s['switch_off'] else 'on'}, to "
           f"{s['end_time_ms']:.4f} ms in {s['fluid_steps']} fluid steps"
-          + (f", {s['wall_s']:.0f} s on {s['ranks']} rank(s)" if "wall_s" in s else ""))
+          + (f", {s['wall_s']:.0f} s wall on {s['ranks']} rank(s)" if "wall_s" in s else "")
+          + (f", solver CPU {s['solver_cpu_s']:.0f} s" if s.get("solver_cpu_s") else ""))
     print("   t [ms]  pool diameter [um]  depth [um]  peak T [K]")
     for t, dd, dp, T in zip(s["pool_time_ms"], s["pool_diameter_um"], s["pool_depth_um"], s["peak_T_K"]):
         print(f"  {t:7.4f}  {dd:18.1f}  {dp:10.1f}  {T:10.0f}")
