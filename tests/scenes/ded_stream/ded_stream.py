@@ -38,10 +38,12 @@ TEST = "scenes.ded-stream"
 SCENE = os.path.join(SRC, "examples", "ded-stream", "scene.py")
 
 
-def run_variant(work, name, extra):
+def run_variant(work, name, extra, reuse=False):
+    """Build and run a CI variant (reuse: only analyse the case a kept earlier run left)."""
     case = os.path.join(work, name)
-    subprocess.run(["/usr/bin/python3", SCENE, "build", case, "--ci"] + extra, check=True)
-    subprocess.run(["/usr/bin/python3", SCENE, "run", case], check=True)
+    if not reuse:
+        subprocess.run(["/usr/bin/python3", SCENE, "build", case, "--ci"] + extra, check=True)
+        subprocess.run(["/usr/bin/python3", SCENE, "run", case], check=True)
     return case, scene.analyse(case)
 
 
@@ -68,11 +70,14 @@ def laser_checks(case, s, label):
 
 def main():
     keep = "--keep" in sys.argv
-    work = tempfile.mkdtemp(prefix="meltdem-ded-stream-")
+    # --reuse DIR: re-check the cases of a run kept with --keep (no simulation)
+    reuse = sys.argv[sys.argv.index("--reuse") + 1] if "--reuse" in sys.argv else None
+    work = reuse or tempfile.mkdtemp(prefix="meltdem-ded-stream-")
+    keep = keep or bool(reuse)
     ok = True
 
     # ---- laser on
-    case, s = run_variant(work, "laser_on", [])
+    case, s = run_variant(work, "laser_on", [], reuse)
     d018 = s["pool_diameter_at_0.018ms_um"]
     ok &= check_relative(TEST, "laser on: melt-pool diameter at 0.018 ms [um] (10 um cells) vs paper ~130 um",
                          d018, scene.PAPER["pool_diameter_um"], 0.15,
@@ -80,13 +85,13 @@ def main():
                                "cooler and the pool is smaller (the 5 um full variant: see README)")
     p1 = s["particles"][0]
     ok &= check_relative(TEST, "laser on: particle 1 arrival at the substrate [ms] vs straight-line kinematics "
-                         "(h - R) sqrt(2) / 10 m/s", p1["arrival_ms"], p1["kinematic_arrival_ms"], 0.05)
+                         "(h - R) sqrt(2) / 10 m/s", p1.get("arrival_ms") or np.inf, p1["kinematic_arrival_ms"], 0.05)
     arr = [(e["arrival_ms"], e["kinematic_arrival_ms"]) for e in s["particles"] if e.get("arrival_ms")]
-    worst = max(abs(a / k - 1) for a, k in arr)
+    worst = max((abs(a / k - 1) for a, k in arr), default=np.inf)
     ok &= check_at_most(TEST, f"laser on: worst relative deviation of the {len(arr)} particle arrivals (reaching, "
                         "deflected at or melting within 5 um of the substrate top) from the kinematics", worst, 0.05)
     ok &= check_relative(TEST, "laser on: particle 1 arrival [ms] vs paper (enters the pool at ~0.006 ms)",
-                         p1["arrival_ms"], scene.PAPER["first_enters_pool_ms"], 0.20,
+                         p1.get("arrival_ms") or np.inf, scene.PAPER["first_enters_pool_ms"], 0.20,
                          xfail="the paper's stated geometry gives 0.0045 ms by kinematics; its 0.006 ms is "
                                "read off figures")
     ok &= check_at_most(TEST, "laser on: particle 1 molten fraction when it reaches the substrate "
@@ -102,7 +107,7 @@ def main():
                         s["worst_enthalpy_system_error"], 1e-6)
 
     # ---- laser off at 0.012 ms (CI run to 0.017 ms, see the README)
-    case, s = run_variant(work, "switch_off", ["--switch-off"])
+    case, s = run_variant(work, "switch_off", ["--switch-off"], reuse)
     lok, lit, t, dt, cont, part = laser_checks(case, s, "switch-off")
     ok &= lok
     dark = t - dt >= scene.T_OFF - 1e-15
@@ -116,7 +121,7 @@ def main():
                         peak[iend] / peak[i12], 0.9)
     ok &= check_at_most(TEST, "switch-off: pool diameter at 0.017 ms / at 0.012 ms (the pool shrinks: <= 1)",
                         diam[iend] / diam[i12], 1.0)
-    tr4 = scene.read_dump(case)[4]
+    tr4 = scene.read_dump(case).get(4, np.zeros((1, 10)))
     ok &= check_absolute(TEST, "switch-off: particle 4 (reaching the pool after the switch-off) bounces off the "
                          "solid metal (1 = yes; paper: the particle arriving after the switch-off bounces off)",
                          float(tr4[:, 6].max() > 0), 1.0, 0)
@@ -136,7 +141,9 @@ def molten_at_arrival(case, pid):
     deflected)."""
     s = json.load(open(os.path.join(case, "summary.json")))
     e = s["particles"][pid - 1]
-    tr = scene.read_dump(case)[pid]
+    tr = scene.read_dump(case).get(pid)
+    if tr is None or e.get("arrival_ms") is None:
+        return 1.0   # never arrived: counts as a miss of the 'solid on arrival' checks
     i = np.searchsorted(tr[:, 0], e["arrival_ms"] * 1e-3 - 1e-12)
     r = tr[min(i, len(tr) - 1)]
     return float(max(r[9], 1 - (r[7] / (scene.D_P / 2)) ** 3))
