@@ -31,7 +31,9 @@ def main(scene=SCENE, doc=__doc__):
                     help="particle-to-cell distribution model")
     ap.add_argument("--grains", type=int, default=None, help="number of grains")
     ap.add_argument("--bed", default=None, help="folder of the poured bed (reused when present)")
-    ap.add_argument("--gas-cp", type=float, default=pbf.GAS_CP_STABLE,
+    ap.add_argument("--no-shadow", action="store_true",
+                    help="grains cast no shadow and absorb no light (the beam reaches the continuum)")
+    ap.add_argument("--gas-cp", type=float, default=pbf.G["cp"],
                     help="gas heat capacity [J/kg/K] (paper: 10; see pbf.py GAS_CP_STABLE)")
     ap.add_argument("--np", type=int, default=1, help="MPI ranks")
     args = ap.parse_args()
@@ -39,7 +41,7 @@ def main(scene=SCENE, doc=__doc__):
     variant = f"{scene}-{'full' if args.full else 'ci'}"
     if args.action in ("build", "all"):
         pbf.build(case, variant, dx=args.dx, dist=args.dist, n=args.grains, bed_dir=args.bed,
-                  gas_cp=args.gas_cp)
+                  gas_cp=args.gas_cp, shadow=not args.no_shadow)
     if args.action in ("run", "all"):
         pbf.run(case, args.np)
     if args.action in ("analyse", "all"):
