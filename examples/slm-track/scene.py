@@ -522,6 +522,8 @@ def analyse(case):
         s[f"worst_{c}_system_error"] = float(np.max(np.abs(d[f"{c}_system_error"])))
     s["worst_momentum_continuum_error"] = float(max(np.max(np.abs(d[f"mom_{c}_continuum_error"])) for c in "xyz"))
     s["dem_updates_speed_limited"] = limited_updates(case)
+    cpu = re.findall(r"ExecutionTime = (\S+) s", open(os.path.join(case, "log.meltdemFoam")).read())
+    s["cpu_s"] = float(cpu[-1]) if cpu else float("nan")  # solver CPU time of rank 0 (LAMMPS included)
     s["wall_s"] = meta.get("wall_s", float("nan"))
     s["cells"] = int(np.prod(meta["n_cells"]))
     s["cell_m"] = meta["cell"]
@@ -545,7 +547,7 @@ def analyse(case):
         ("worst continuum mass / energy / momentum error", f"{s['worst_mass_continuum_error']:.1e} / "
          f"{s['worst_enthalpy_continuum_error']:.1e} / {s['worst_momentum_continuum_error']:.1e}", ""),
         ("DEM updates capped at the speed limit", s["dem_updates_speed_limited"], f"{VMAX_DEM:g} m/s"),
-        ("cells / wall time", f"{s['cells']} / {s['wall_s']:.0f} s", ""),
+        ("cells / wall time / CPU time", f"{s['cells']} / {s['wall_s']:.0f} s / {s['cpu_s']:.0f} s", ""),
     ]
     for r in rows:
         print(f"{r[0]:<52} {str(r[1]):<28} {r[2]}")
