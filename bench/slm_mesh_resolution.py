@@ -29,6 +29,7 @@ def main():
     ap.add_argument("--bed")
     ap.add_argument("--plot-only", action="store_true", help="re-plot from WORK/results.json")
     ap.add_argument("--gas-cp", type=float, default=1e5, help="gas heat capacity (see below)")
+    ap.add_argument("--strict", action="store_true", help="exit 1 when a point did not run (smoke test)")
     ap.add_argument("--out", default=HERE, help="folder of the .md and .png (default: bench/)")
     a = ap.parse_args()
     os.makedirs(a.work, exist_ok=True)
@@ -59,6 +60,8 @@ def main():
             results[f"{a.gas_cp:g}/{h:.4g}"] = s
             json.dump(results, open(res_path, "w"), indent=1)
     write(results, a.np, a.out)
+    if a.strict and any(s.get("status") != "ok" for s in results.values()):
+        sys.exit(1)
 
 
 READING = """Reading (measured 2026-11-25): with argon's heat capacity (the scene's default) only the 37.5 and
