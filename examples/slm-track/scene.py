@@ -3,6 +3,7 @@
 coupled meltdemFoam + LAMMPS.
 
     scene.py build CASE [--ci | --full] [--cell H] [--bed DUMP] [--track L] [--distribution M]
+                   [--gas-cp CP] [--fluid-dt DT]
     scene.py run CASE [--np N]
     scene.py analyse CASE
     scene.py all CASE [--ci | --full] [--np N] [build options]
@@ -15,7 +16,6 @@ a Gaussian laser (100 W, 0.1 mm spot, 0.5 m/s, absorptivity 0.5) moving along x 
 middle of the bed. See README.md for the choices and the definitions of the measured numbers.
 """
 import argparse
-import glob
 import json
 import os
 import re
@@ -385,7 +385,6 @@ def particle_motion(case, meta):
     tend, last = snaps[-1]
     ids0 = first["id"].astype(int)
     top0 = float(np.max(first["y"] + first["radius"]))       # highest point of the bed at the start
-    y0 = dict(zip(ids0, first["y"]))
     vmax, ejected, ejected_speed = {}, set(), {}
     for t, s in snaps:
         speed = np.sqrt(s["vx"] ** 2 + s["vy"] ** 2 + s["vz"] ** 2)
