@@ -299,7 +299,8 @@ def report(r):
     elif r.get("estimate"):
         print(f"  c {c:g} {model:10s}: not run: {r['why']}", flush=True)
     else:
-        print(f"  c {c:g} {model:10s}: FAILED after {r['steps_done']} steps, {r['wall']:.1f} s: {r['why']}",
+        what = "stopped" if r.get("tau") else "FAILED"
+        print(f"  c {c:g} {model:10s}: {what} after {r['steps_done']} steps, {r['wall']:.1f} s: {r['why']}",
               flush=True)
 
 
@@ -419,7 +420,8 @@ for k, model in enumerate(args.models.split(",")):
         axes[2].loglog([r["wall"] for r in rs], [max(abs(r["F"] / F_ref - 1), abs(r["Q"] / Q_ref - 1)) for r in rs],
                        m + "-", label=model)
         for r in rs:
-            axes[2].annotate(f"{r['c']:g}" + (f" ({r['dt']:.2g} s)" if r["dt"] != DT else ""), (r["wall"], max(abs(r["F"] / F_ref - 1), abs(r["Q"] / Q_ref - 1))),
+            label = f"{r['c']:g}" + (f" ({r['dt']:.2g} s)" if r["dt"] != DT else "")
+            axes[2].annotate(label, (r["wall"], max(abs(r["F"] / F_ref - 1), abs(r["Q"] / Q_ref - 1))),
                              textcoords="offset points", xytext=(4, 3 - 9 * k), fontsize=8)
 for ax, t in zip(axes[:2], ("drag force error vs undisturbed gas (%)", "heat rate error vs undisturbed gas (%)")):
     ax.set_xscale("log", base=2)

@@ -58,7 +58,7 @@ import coupledcase as cc  # noqa: E402
 ap = argparse.ArgumentParser()
 ap.add_argument("--bin", default=os.environ.get("MELTDEM_BIN", os.path.join(ROOT, "build", "bin")))
 ap.add_argument("--cases", default="thesis,settling")
-ap.add_argument("--thesis-n", default="1,2,5,10,20,50,100,200,500,1000")
+ap.add_argument("--thesis-n", default="1,2,5,10,20,50,75,100,200,500,1000")
 ap.add_argument("--settling-n", default="1,2,5,10,20,50,100,300,750")
 ap.add_argument("--repeat", type=int, default=2, help="runs per point, fastest kept")
 ap.add_argument("--quick", action="store_true", help="smoke test: two intervals per case, short runs")
@@ -106,9 +106,25 @@ def fix_interval(case, n, dem_dt):
 
 
 def timed(case):
+    """wall time, and None or why the solver stopped (the coupling's bound check names the
+    heat exchange time a fluid step must stay below)"""
     t0 = time.perf_counter()
-    cc.run_solver(case)
-    return time.perf_counter() - t0
+    rc = cc.run_solver(case, check=False)
+    wall = time.perf_counter() - t0
+    if rc == 0:
+        return wall, None
+    text = open(os.path.join(case, "log.meltdemFoam")).read()
+    times = re.findall(r"\nTime = (\S+)", text)
+    at = f"at t = {float(times[-1]) * 1e3:.3g} ms" if times else "before the first step"
+    tau = re.search(r"heat capacity over its particles' conductance is (\S+) s", text)
+    bound = re.search(r"T min/max now (\S+), (\S+) K", text)
+    if tau:
+        why = (f"stopped {at} by the coupling's bound check (gas {float(bound.group(1)):.4g}-{float(bound.group(2)):.4g} K "
+               f"left the range before the step; heat exchange time {float(tau.group(1)):.2g} s)")
+    else:
+        fatal = re.search(r"FOAM FATAL[^\n]*\n(?:[^\n]*\n){0,3}", text)
+        why = f"failed {at}: " + (" ".join(fatal.group(0).split()) if fatal else f"exit code {rc}")
+    return wall, why
 
 
 def max_courant(case):
@@ -136,7 +152,11 @@ def thesis_run(n, rep):
                     extra_lammps="thermo_style custom step time atoms f_melt[1]\n"
                                  "thermo_modify format float %.15g\nthermo 1\n")
     fix_interval(case, n, TH_DEM)
-    wall = timed(case)
+    wall, why = timed(case)
+    if why:
+        if not args.keep:
+            shutil.rmtree(case)
+        return dict(N=n, fluid_dt=n * TH_DEM, wall=wall, why=why)
     p, d = cc.particles_csv(case), cc.ledger(case)
     a = thermo_rows(os.path.join(case, "log.lammps"), 4)  # step time atoms molten
     t, molten = a[:, 1], a[:, 3]
@@ -150,7 +170,7 @@ def thesis_run(n, rep):
         t_melt = np.nan
     melted, heat = np.sum(p["mass_melted"]), np.sum(p["heat_absorbed"])
     steps = d[1:]
-    r = dict(N=n, fluid_dt=n * TH_DEM, wall=wall, steps=len(p), co=max_courant(case), t_start=t_start,
+    r = dict(N=n, fluid_dt=n * TH_DEM, wall=wall, why=None, steps=len(p), co=max_courant(case), t_start=t_start,
              t_melt=t_melt, melted=melted, sensible=heat - TH_L * melted, latent=TH_L * melted,
              momentum=-np.sum(p["momentum_handed_over_y"]),
              mass_err=np.max(np.abs(steps["mass_continuum_error"])),
@@ -175,9 +195,11 @@ def settling_run(n, rep):
     case = os.path.join(work, f"settling_N{n}_r{rep}")
     settling_case(case, n)
     fix_interval(case, n, ST_DEM)
-    wall = timed(case)
-    r = dict(N=n, fluid_dt=n * ST_DEM, wall=wall, steps=len(cc.particles_csv(case)), co=max_courant(case),
-             v_t=terminal(cc.track(os.path.join(case, "log.lammps"))))
+    wall, why = timed(case)
+    r = dict(N=n, fluid_dt=n * ST_DEM, wall=wall, why=why)
+    if not why:
+        r.update(steps=len(cc.particles_csv(case)), co=max_courant(case),
+                 v_t=terminal(cc.track(os.path.join(case, "log.lammps"))))
     if not args.keep:
         shutil.rmtree(case)
     return r
@@ -205,7 +227,7 @@ def sweep(run, ns):
     for rep in range(args.repeat):
         for n in ns:
             r = run(n, rep)
-            print(f"  N {n:5d}: {r['wall']:.2f} s", flush=True)
+            print(f"  N {n:5d}: {r['wall']:.2f} s" + (f": {r['why']}" if r["why"] else ""), flush=True)
             if n not in best or r["wall"] < best[n]["wall"]:
                 best[n] = r
     return [best[n] for n in ns]
@@ -215,6 +237,17 @@ def rel(a, b):
     return (a - b) / b
 
 
+def build_stamp():
+    """git commit of the sources and modification time of the solver used (a rebuild during the run shows)"""
+    head = subprocess.run(["git", "-C", ROOT, "rev-parse", "--short", "HEAD"], capture_output=True, text=True).stdout.strip()
+    dirty = subprocess.run(["git", "-C", ROOT, "status", "--porcelain", "--untracked-files=no", "coupling",
+                            "foam-src", "lammps-src"], capture_output=True, text=True).stdout.strip()
+    mtime = time.strftime("%Y-%m-%d %H:%M:%S UTC", time.gmtime(os.path.getmtime(os.path.join(args.bin, "meltdemFoam"))))
+    return (f"sources at the start {head}{' + uncommitted coupling changes' if dirty else ''}, "
+            f"meltdemFoam built {mtime}")
+
+
+STAMP = build_stamp()
 cases = args.cases.split(",")
 results = {}
 if "thesis" in cases:
@@ -235,7 +268,10 @@ lines = ["# Coupling interval: DEM steps per fluid step, cost vs accuracy", "",
          "loaded-machine times (about +-20 %), compare the ratios within a column. The DEM step is fixed; "
          "N = `demStepsPerFluidStep`, fluid step = N DEM steps (the Courant limit is overridden, largest "
          "Courant number shown). Wall time = whole solver run, start-up (~0.3 s) included, fastest of "
-         f"{args.repeat} interleaved runs.", ""]
+         f"{args.repeat} interleaved runs. Build: " + STAMP
+         + (" -- REBUILT DURING THE RUN (now: " + build_stamp() + "): mixed results"
+            if build_stamp().split("built")[1] != STAMP.split("built")[1] else "")
+         + ".", ""]
 summary = []
 if "thesis" in results:
     R = results["thesis"]
@@ -250,6 +286,10 @@ if "thesis" in results:
               "momentum handed over (kg m/s) | vs m 2 m/s | worst step mass error | worst step energy error |",
               "|" + "---|" * 18]
     for r in R:
+        if r["why"]:
+            lines.append(f"| {r['N']} | {r['fluid_dt'] * 1e6:g} | - | - | {r['wall']:.2f} | - | - | {r['why']} | "
+                         f"{ref['t_melt'] * 1e3:.5g} | - | - | - | - | - | - | - | - | - |")
+            continue
         lines.append(
             f"| {r['N']} | {r['fluid_dt'] * 1e6:g} | {r['co']:.3g} | {r['steps']} | {r['wall']:.2f} | "
             f"{ref['wall'] / r['wall']:.1f} | {r['t_start'] * 1e3:.4g} | {r['t_melt'] * 1e3:.5g} | "
@@ -257,12 +297,16 @@ if "thesis" in results:
             f"{rel(r['sensible'], TH_M * TH_CP * TH_TM):+.1e} | {r['latent']:.6g} | {rel(r['latent'], TH_EL):+.1e} | "
             f"{r['momentum']:.6g} | {rel(r['momentum'], TH_M * 2):+.1e} | {r['mass_err']:.1e} | {r['energy_err']:.1e} |")
     lines.append("")
-    ok = [r for r in R if abs(rel(r["t_melt"], ref["t_melt"])) <= 0.01]
+    ok = [r for r in R if not r["why"] and abs(rel(r["t_melt"], ref["t_melt"])) <= 0.01]
     if ok:
         b = max(ok, key=lambda r: r["N"])
         summary.append(f"Thesis particle: the largest N with the melting time within 1 % of N = {ref['N']} is N = {b['N']} "
                        f"(fluid step {b['fluid_dt'] * 1e6:g} us, {rel(b['t_melt'], ref['t_melt']):+.2%}, "
                        f"{ref['wall'] / b['wall']:.1f}x faster).")
+    stopped = [r for r in R if r["why"]]
+    if stopped:
+        summary.append("Thesis particle: stopped by the coupling (its message names the knob): "
+                       + "; ".join(f"N = {r['N']}: {r['why']}" for r in stopped) + ".")
 if "settling" in results:
     R = results["settling"]
     ref = R[0]
@@ -274,12 +318,17 @@ if "settling" in results:
               f"| N | fluid step (ms) | max Co | fluid steps | wall (s) | speed-up vs N={ref['N']} | terminal velocity (m/s) | "
               f"reference standalone (m/s) | error | vs coupled N={ref['N']} |", "|" + "---|" * 10]
     for r in R:
+        if r["why"]:
+            lines.append(f"| {r['N']} | {r['fluid_dt'] * 1e3:g} | - | - | {r['wall']:.2f} | - | {r['why']} | "
+                         f"{v_alone:.6g} | - | - |")
+            continue
         lines.append(f"| {r['N']} | {r['fluid_dt'] * 1e3:g} | {r['co']:.2g} | {r['steps']} | {r['wall']:.2f} | "
                      f"{ref['wall'] / r['wall']:.1f} | {r['v_t']:.6g} | {v_alone:.6g} | {rel(r['v_t'], v_alone):+.3%} | "
                      f"{rel(r['v_t'], ref['v_t']):+.3%} |")
     lines.append("")
+    R = [r for r in R if not r["why"]]
     spread = max(abs(rel(r["v_t"], ref["v_t"])) for r in R)
-    summary.append(f"Settling grain: every N up to {R[-1]['N']} (fluid step {R[-1]['fluid_dt'] * 1e3:g} ms) gives the "
+    summary.append(f"Settling grain: every N that ran, up to {R[-1]['N']} (fluid step {R[-1]['fluid_dt'] * 1e3:g} ms), gives the "
                    f"terminal velocity of N = 1 within {spread:.2%}; its error against the standalone value "
                    f"({rel(ref['v_t'], v_alone):+.2%}) is the cells' doing, not the interval's.")
 lines += ["## Summary", ""] + [f"- {s}" for s in summary] + [""]
@@ -293,14 +342,14 @@ import matplotlib.pyplot as plt  # noqa: E402
 fig, axes = plt.subplots(1, 2, figsize=(13, 5))
 ax = axes[0]
 if "thesis" in results:
-    R = results["thesis"]
+    R = [r for r in results["thesis"] if not r["why"]]
     ref = R[0]
     e = [max(abs(rel(r["t_melt"], ref["t_melt"])), 1e-5) for r in R]
     ax.loglog([r["wall"] for r in R], e, "o-", label="thesis particle: melting time vs N=1")
     for r, y in zip(R, e):
         ax.annotate(f"N={r['N']}", (r["wall"], y), textcoords="offset points", xytext=(4, 4), fontsize=8)
 if "settling" in results:
-    R = results["settling"]
+    R = [r for r in results["settling"] if not r["why"]]
     e = [max(abs(rel(r["v_t"], v_alone)), 1e-5) for r in R]
     ax.loglog([r["wall"] for r in R], e, "s-", label="settling: terminal velocity vs standalone")
     for r, y in zip(R, e):
@@ -312,7 +361,7 @@ ax.grid(True, which="both", alpha=0.3)
 ax.legend(fontsize=8)
 ax = axes[1]
 if "thesis" in results:
-    R = results["thesis"]
+    R = [r for r in results["thesis"] if not r["why"]]
     ref = R[0]
     ax.semilogx([r["N"] for r in R], [100 * rel(r["t_melt"], ref["t_melt"]) for r in R], "o-",
                 label=f"thesis: fully molten time vs N={ref['N']}")
@@ -320,7 +369,7 @@ if "thesis" in results:
                 label=f"thesis: melting start vs N={ref['N']} (/10)")
     ax.axvline(0.5 * 0.7e-3 / 2.0 / TH_DEM, color="grey", ls=":", label="thesis: Courant 0.5 at N = 175")
 if "settling" in results:
-    R = results["settling"]
+    R = [r for r in results["settling"] if not r["why"]]
     ax.semilogx([r["N"] for r in R], [100 * rel(r["v_t"], R[0]["v_t"]) for r in R], "s-",
                 label=f"settling: terminal velocity vs N={R[0]['N']}")
     ax.semilogx([r["N"] for r in R], [100 * rel(r["v_t"], v_alone) for r in R], "s--",
