@@ -517,6 +517,13 @@ def analyse(case, quiet=False):
         "absorptivity": meta["absorptivity"], "powder_spot_over_laser_spot": meta.get("powder_spot", 1.0),
         "wall_seconds": meta.get("wall_seconds"),
     }
+    if not have_ledger:
+        summary.update(geometric_capture(case, g, meta, tds))
+        # the bead a parabolic cross-section of the fused width would have with that capture:
+        # area = eta feed / (rho v), height = 1.5 area / width
+        area = summary["geometric_capture_pct"] / 100 * PROCESS["feed"] / (METAL["rho"] * PROCESS["speed"])
+        if summary["bead_width_mm"] > 0:
+            summary["implied_bead_height_mm"] = 1.5 * area / (summary["bead_width_mm"] * 1e-3) * 1e3
     if have_ledger:
         summary.update({
             "deposition_efficiency_pct": 100.0 * eff,
@@ -537,6 +544,41 @@ def analyse(case, quiet=False):
     if not quiet:
         print_table(summary)
     return summary
+
+
+def geometric_capture(case, g, meta, tds, n_last=3):
+    """Bare track (no powder): the share of the powder spot (its rings, each uniform) that falls
+    on the pool surface (top metal cells with liquid fraction >= 0.5, the pool at the surface),
+    averaged over the last written times: the thesis's 'geometrical matching of the powder
+    stream and the meltpool surface', an estimate of the deposition efficiency without the
+    coupled grains. Also the bead height a parabolic bead of the fused width would get from it."""
+    xc, yc, zc = g.centres()
+    nx, ny, nz = g.n
+    ksurf = np.searchsorted(zc, 0.0) - 1
+    w = 0.5 * PROCESS["spot_diameter"] * meta.get("powder_spot", 1.0)
+    radii, frac = powder_rings(w)
+    dxs, dys = np.diff(g.xf), np.diff(g.yf)
+    # sub-sample each surface cell (8 x 8 points) against the rings
+    sub = (np.arange(8) + 0.5) / 8
+    out = []
+    for d in tds[-n_last:]:
+        fl = read_field(os.path.join(case, d, "liquidFraction")).reshape(nz, ny, nx)[ksurf]
+        xbeam = g.x_start + PROCESS["speed"] * float(d)
+        got = 0.0
+        for j in range(ny):
+            for i in range(nx):
+                if fl[j, i] < 0.5:
+                    continue
+                px = g.xf[i] + sub * dxs[i] - xbeam
+                py = g.yf[j] + sub * dys[j]
+                r = np.hypot(px[:, None], py[None, :]).ravel()
+                k = np.searchsorted(radii, r, side="right") - 1
+                ok = (k >= 0) & (k < len(frac))
+                dens = frac[k[ok]] / (0.5 * np.pi * (radii[k[ok] + 1] ** 2 - radii[k[ok]] ** 2))  # half rings
+                got += np.sum(dens) * dxs[i] * dys[j] / sub.size ** 2
+        out.append(got)
+    eta = float(np.mean(out))
+    return {"geometric_capture_pct": 100.0 * eta, "geometric_capture_spread_pct": 100.0 * float(np.ptp(out))}
 
 
 def crossing(s, f, level):
@@ -566,6 +608,10 @@ def print_table(s):
             continue
         m, e, t = s[key], EXPERIMENT[ref], THESIS_SIM[ref]
         print(f"{key:32s} {m:9.3f} {e:10.3f} {m - e:+8.3f} {t:10.3f}")
+    if "geometric_capture_pct" in s:
+        print(f"bare track (no powder): share of the powder spot on the pool surface {s['geometric_capture_pct']:.1f} % "
+              f"(spread {s['geometric_capture_spread_pct']:.1f}) -- the geometric estimate of the deposition efficiency; "
+              f"implied parabolic bead height {s.get('implied_bead_height_mm', float('nan')):.3f} mm")
     if "powder_fed_kg" not in s:
         return
     print(f"powder fed {s['powder_fed_kg']:.4g} kg, deposited {s['powder_deposited_kg']:.4g} kg, "

@@ -1,20 +1,23 @@
 #!/usr/bin/env python3
 """scenes.lmd-track: the CI variant of examples/lmd-track (thesis 4.1, table 4.1 conditions).
 
-Coupled meltdemFoam + LAMMPS, half model, 0.5 mm cells, 1.2 mm of track (0.72 s): a 1 kW
-Gaussian beam (2.5 mm) at 100 mm/min melts an AISI 304 plate while fix powder/insert feeds
-40-200 um grains at 1.6 g/min from a nozzle slab moving with the beam. Checks:
+Half model, 0.5 mm cells, 1.2 mm of track (0.72 s) from the quasi-steady plate temperature: a
+1 kW Gaussian beam (2.5 mm) at 100 mm/min on an AISI 304 plate. Two runs:
 
-* bead width, bead height, penetration and powder deposition efficiency against the
-  experiment of table 4.2 (3.46 / 0.82 / 0.61 mm / 85.8 %). Tolerances: the geometry within one
-  cell of this mesh (0.5 mm; the thesis states its own accuracy as limited by its 0.25 mm cells),
-  the efficiency within 5 points (the thesis simulation is 0.7 points off the experiment; the
-  CI stream of ~800 grains has a sampling error of ~1.5 points). The CI track is shorter than
-  the time the pool needs to grow to its steady size: the geometry misses are booked XFAIL.
-* the powder bookkeeping: every drawn grain is fed, and fed = deposited + lost + aloft +
-  pending (1e-12 relative); the melt LAMMPS reports equals what the continuum received;
-* the particle ledger: per-step continuum mass and energy errors (thesis eq. 2.20, 2.26) and
-  the system (particles + continuum + pending store) mass error, per step and cumulative.
+1. bare track (laser only, ~40 s): fused width and penetration vs table 4.2 (3.46 / 0.61 mm),
+   within one cell of this mesh (0.5 mm; the thesis states its own accuracy as limited by its
+   0.25 mm cells), and the share of the powder spot falling on the pool surface vs the
+   deposition efficiency 85.8 % (within 5 points: the thesis simulation is 0.7 points off).
+2. coupled meltdemFoam + LAMMPS with the powder stream (fix powder/insert, 1.6 g/min, 40-200 um)
+   inserted during the run: the run must reach the end of the track; then bead width, height,
+   penetration and deposition efficiency (deposited / (deposited + lost)) vs table 4.2 with the
+   same tolerances; the powder bookkeeping (fed = deposited + lost + aloft + pending to 1e-12;
+   ledger deposit = fix powder/melt's molten mass; fed = 0.8 g/min x run time within 1 %); the
+   particle ledger (per-step continuum mass/energy errors, system mass error per step and
+   cumulative, with the feed and pending store booked).
+
+Misses that the CI mesh and track explain are booked XFAIL with the reason; the penetration miss
+is the model's (no Marangoni flow, README). A coupled run that stops is a FAIL (a defect).
 """
 import json
 import os
@@ -32,24 +35,55 @@ import scene  # noqa: E402
 
 TEST = "scenes.lmd-track"
 CELL_MM = scene.VARIANTS["ci"]["dx"] * 1e3
-SHORT = "CI: 0.5 mm cells (2 per penetration depth) and a 2 mm track"
+SHORT = "CI: 0.5 mm cells and 1.2 mm of track (the section lies at the start)"
+CONDUCTION = "no Marangoni flow: conduction-shaped pool, deeper than the experiment's (README)"
+
+
+def bare_track(work):
+    """The CI mesh and track without powder (laser only): the fused zone and the geometric
+    capture of the powder spot by the pool surface."""
+    case = os.path.join(work, "bare")
+    scene.main(["all", case, "--ci", "--no-particles"])
+    s = json.load(open(os.path.join(case, "summary.json")))
+    ex = scene.EXPERIMENT
+    ok = check_absolute(TEST, "bare track: fused width vs experiment bead width [mm]", s["bead_width_mm"],
+                        ex["width_mm"], CELL_MM, xfail=SHORT)
+    ok &= check_absolute(TEST, "bare track: penetration vs experiment [mm]", s["penetration_mm"],
+                         ex["penetration_mm"], CELL_MM, xfail=CONDUCTION)
+    ok &= check_absolute(TEST, "bare track: powder spot share on the pool surface vs experiment deposition "
+                         "efficiency [%]", s["geometric_capture_pct"], ex["efficiency_pct"], 5.0, xfail=SHORT)
+    return ok
 
 
 def main():
     keep = "--keep" in sys.argv
     work = tempfile.mkdtemp(prefix="meltdem-lmd-")
+    ok = bare_track(work)
     case = os.path.join(work, "case")
-    scene.main(["all", case, "--ci"])
+    scene.main(["build", case, "--ci"])
+    t_end = json.load(open(os.path.join(case, "scene.json")))["end"]
+    try:
+        scene.main(["run", case])
+    except RuntimeError as e:
+        # the coupling stopped (e.g. its bounded-temperature guard): a defect, not a miss
+        print(str(e)[-1500:])
+        led = cc.ledger(case)
+        check_absolute(TEST, "coupled run reaches the end of the track [s]", float(led["time"][-1]), t_end, 1e-9)
+        cc.check_balances(TEST, led)
+        return fc.finish(False, work, keep)
+    ok_bare = ok
+    scene.main(["analyse", case])
     s = json.load(open(os.path.join(case, "summary.json")))
     led = cc.ledger(case)
     ex = scene.EXPERIMENT
+    ok = ok_bare & check_absolute(TEST, "coupled run reaches the end of the track [s]", s["time_s"], t_end, 1e-9)
     print(f"{TEST}: {s['particles_inserted']} grains inserted, wall {s['wall_seconds']:.0f} s")
-    ok = check_absolute(TEST, "bead width vs experiment (table 4.2) [mm]", s["bead_width_mm"], ex["width_mm"],
+    ok &= check_absolute(TEST, "bead width vs experiment (table 4.2) [mm]", s["bead_width_mm"], ex["width_mm"],
                         CELL_MM, xfail=SHORT)
     ok &= check_absolute(TEST, "bead height vs experiment (table 4.2) [mm]", s["bead_height_mm"], ex["height_mm"],
                          CELL_MM, xfail=SHORT)
     ok &= check_absolute(TEST, "penetration vs experiment (table 4.2) [mm]", s["penetration_mm"],
-                         ex["penetration_mm"], CELL_MM, xfail=SHORT)
+                         ex["penetration_mm"], CELL_MM, xfail=CONDUCTION)
     ok &= check_absolute(TEST, "powder deposition efficiency vs experiment (table 4.2) [%]",
                          s["deposition_efficiency_pct"], ex["efficiency_pct"], 5.0, xfail=SHORT)
     # powder bookkeeping
