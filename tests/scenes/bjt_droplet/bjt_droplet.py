@@ -75,7 +75,7 @@ def main():
     ok &= check_at_least(TEST, "footprint radius at the paper's times, 10 m/s minus 1 m/s [um] (paper: spread "
                          "wider; bound dx/2)", r["v10_footprint_radius_um"] - r["v1_footprint_radius_um"], dx_um / 2,
                          xfail="the 10 m/s droplet spreads, then recoils (surface tension): at 0.05 ms its footprint "
-                         "is back near the 1 m/s one")
+                         "is back at or below the 1 m/s one")
     ok &= check_at_least(TEST, "largest footprint radius over the run, 10 m/s minus 1 m/s [um] (bound dx/2)",
                          r["v10_footprint_radius_largest_um"] - r["v1_footprint_radius_largest_um"], dx_um / 2)
     ok &= check_at_least(TEST, "penetration 1 m/s minus 10 m/s [um] (paper: less penetration at 10; bound dx)",
