@@ -323,16 +323,39 @@ energyControls {{ nCorrectors 20; tolerance 1e-10; }}
     return cfg
 
 
-def run(case, np_=1):
+def run(case, np_=1, timeout=None):
+    """blockMesh (+ decomposePar) + meltdemFoam; timeout [s] of wall time stops the solver
+    (the case keeps what it wrote) and raises RuntimeError like a solver failure."""
     t0 = time.time()
     fc.run(["blockMesh"], case, "log.blockMesh")
     if np_ > 1:
         cc.decompose(case, np_, (np_, 1, 1))
-    cc.run_solver(case, np_)
+    cmd = [fc.solver()] if np_ == 1 else (["mpirun", "--allow-run-as-root", "--oversubscribe", "-np", str(np_)]
+                                         + [fc.solver(), "-parallel"])
+    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
+               PWD=os.path.abspath(case))
+    with open(os.path.join(case, "log.meltdemFoam"), "w") as log:
+        p = subprocess.Popen(cmd, cwd=case, stdout=log, stderr=subprocess.STDOUT, env=env)
+        try:
+            rc = p.wait(timeout=timeout)
+        except subprocess.TimeoutExpired:
+            p.terminate()
+            try:
+                p.wait(timeout=20)
+            except subprocess.TimeoutExpired:
+                p.kill()
+                p.wait()
+            rc = "timeout"
     wall = time.time() - t0
     with open(os.path.join(case, "wall_seconds"), "w") as f:
         f.write(f"{wall:.1f} {np_}\n")
-    print(f"{case}: ran in {wall:.0f} s on {np_} rank(s)")
+    print(f"{case}: ran {wall:.0f} s on {np_} rank(s)" + ("" if rc == 0 else f" (stopped: {rc})"))
+    if rc == "timeout":
+        with open(os.path.join(case, "log.meltdemFoam"), "a") as log:
+            log.write(f"\nERROR: wall-clock limit of {timeout} s reached (scene runner)\n")
+        raise RuntimeError(f"meltdemFoam stopped after the wall-clock limit of {timeout} s in {case}")
+    if rc != 0:
+        raise RuntimeError(f"meltdemFoam failed (rc {rc}) in {case}")
     return wall
 
 

@@ -36,6 +36,7 @@ def main(scene=SCENE, doc=__doc__):
     ap.add_argument("--gas-cp", type=float, default=pbf.G["cp"],
                     help="gas heat capacity [J/kg/K] (paper: 10; see pbf.py GAS_CP_STABLE)")
     ap.add_argument("--np", type=int, default=1, help="MPI ranks")
+    ap.add_argument("--timeout", type=float, default=None, help="wall-clock limit of the solver [s]")
     args = ap.parse_args()
     case = os.path.abspath(args.case)
     variant = f"{scene}-{'full' if args.full else 'ci'}"
@@ -43,7 +44,7 @@ def main(scene=SCENE, doc=__doc__):
         pbf.build(case, variant, dx=args.dx, dist=args.dist, n=args.grains, bed_dir=args.bed,
                   gas_cp=args.gas_cp, shadow=not args.no_shadow)
     if args.action in ("run", "all"):
-        pbf.run(case, args.np)
+        pbf.run(case, args.np, args.timeout)
     if args.action in ("analyse", "all"):
         pbf.print_summary(pbf.summary(case))
 
