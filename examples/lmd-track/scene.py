@@ -356,7 +356,7 @@ def build(a):
     # solid metal is located once per step: a grain crossing more than a fraction of a cell per
     # step samples the wrong phase (melt heat charged to gas cells, deep wall overlaps)
     dt_grain = a.cells_per_step * a.dx / a.powder_speed
-    a.max_dt = min(dt_cap, dt_grain)
+    a.max_dt = min(dt_cap, dt_grain) if a.particles else dt_cap
     fc.control_dict(case, "meltdemFoam", a.end, min(1e-5, a.max_dt), a.write, max_co=0.4, max_alpha_co=0.4,
                     max_dt=a.max_dt)
     fc.fv_schemes(case)
