@@ -164,6 +164,9 @@ def write_foam_case(case, p, v, t_end):
     txt = open(sol).read()
     txt = txt.replace("tolerance 1e-10; relTol 0;\n    }", "tolerance 1e-14; relTol 0;\n    }", 1)
     txt = txt.replace('relaxationFactors { equations { ".*" 1; } }', "")
+    # the reference as a point (a cell index would be the master's local one in parallel)
+    txt = txt.replace(f"pRefCell {n[0] * n[1] * (n[2] - 1)};",
+                      f"pRefPoint ({dx / 2!r} {dx / 2!r} {ztop - dx / 2!r});")
     open(sol, "w").write(txt)
     physics = dict(energy="off", surfaceTension="off", particles=p["particles"])
     extra = ""
