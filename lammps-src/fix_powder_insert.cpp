@@ -41,7 +41,7 @@ using meltdem::coupling::SizeDistribution;
 
 namespace {
 enum { ALL, RATE, MASSRATE };
-constexpr int RESTART_VERSION = 1;
+constexpr int RESTART_VERSION = 2;  // 2: the last ID assigned
 constexpr double CREDIT_EPS = 1.0e-9;
 
 // Read access to fix wall/gran's protected geometry. A pointer to a member named through
@@ -275,6 +275,7 @@ FixPowderInsert::FixPowderInsert(LAMMPS *lmp, int narg, char **arg) :
   credit = 0.0;
   lookahead = 0.0;
   last_insert_step = -1;
+  last_tag = 0;
 
   vector_flag = 1;
   size_vector = 7;
@@ -546,11 +547,14 @@ void FixPowderInsert::pre_exchange()
   }
   const int nnew = placed.size() / 4;
 
-  // current max atom ID, as fix pour
+  // above the current max atom ID, as fix pour, and above every ID this fix ever gave:
+  // when the particle with the largest ID is deleted (melted away, left the mesh) its ID
+  // must not come back, since the coupling keys each particle's fluid by its ID
   tagint maxtag = 0;
   for (int i = 0; i < nlocal; i++) maxtag = MAX(maxtag, atom->tag[i]);
   tagint maxtag_all;
   MPI_Allreduce(&maxtag, &maxtag_all, 1, MPI_LMP_TAGINT, MPI_MAX, world);
+  maxtag_all = MAX(maxtag_all, last_tag);
 
   // each rank creates the particles whose centre lies in its subdomain; beyond a
   // non-periodic box face (shrink-wrapped box) the edge rank takes them
@@ -607,6 +611,7 @@ void FixPowderInsert::pre_exchange()
   }
 
   if (nnew) {
+    last_tag = maxtag_all + nnew;
     atom->natoms += nnew;
     if (atom->natoms < 0) error->all(FLERR, "Too many total atoms");
     if (maxtag_all + nnew >= MAXTAGINT) error->all(FLERR, "New atom IDs exceed maximum allowed ID");
@@ -656,6 +661,7 @@ void FixPowderInsert::write_restart(FILE *fp)
   for (auto s : rng_pos.state()) w.put<std::uint64_t>(s);
   w.put<bigint>(pending.size());
   for (double d : pending) w.put<double>(d);
+  w.put<tagint>(last_tag);
   if (comm->me == 0) {
     int size = w.buf.size();
     fwrite(&size, sizeof(int), 1, fp);
@@ -681,6 +687,7 @@ void FixPowderInsert::restart(char *buf)
   const bigint np = r.get<bigint>();
   pending.clear();
   for (bigint i = 0; i < np; i++) pending.push_back(r.get<double>());
+  last_tag = r.get<tagint>();
   if (ndrawn > ninsert)
     error->all(FLERR, "Fix powder/insert restart holds more drawn particles than the new N requests");
 }

@@ -80,6 +80,7 @@ class FixPowderInsert : public Fix {
   double credit;               // accumulated rate*dt (particles or mass) not yet drawn
   double lookahead;            // massrate: next diameter, drawn but not yet due (0: none)
   bigint last_insert_step;
+  tagint last_tag;            // the largest atom ID this fix has given (never reused)
 
   class FixPowderMelt *fixmelt;
 

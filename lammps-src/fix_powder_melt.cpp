@@ -35,8 +35,7 @@ namespace mc = meltdem::coupling;
 
 FixPowderMelt::FixPowderMelt(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), drag_model(mc::DragModel::Thesis), T0(0.0), ambient_flag(0),
-    provider(nullptr), in_setup(0), solid_flag(0), solid_estar(0.0), solid_alpha(0.0), melt(nullptr), exchange(nullptr), nmax_exchange(0), vector_dirty(1),
-    warned_drag(0)
+    provider(nullptr), in_setup(0), solid_flag(0), solid_estar(0.0), solid_alpha(0.0), melt(nullptr), exchange(nullptr), nmax_exchange(0), vector_dirty(1)
 {
   if (strcmp(update->unit_style, "si") != 0)
     error->all(FLERR, "Fix powder/melt requires units si (its heat and drag laws use SI values)");
@@ -300,6 +299,21 @@ bigint FixPowderMelt::delete_local(const std::function<bool(int)> &doomed)
 }
 
 /* ----------------------------------------------------------------------
+   the fluid parcel a particle drags over a coupling interval starts at the sampled
+   velocity and then moves with the drag reaction (two-body drag)
+------------------------------------------------------------------------- */
+
+void FixPowderMelt::parcel_velocity(int i, mc::FluidState &fluid)
+{
+  if (!(fluid.mass > 0.0)) return;
+  if (melt[i][P_SET] == 0.0) {
+    for (int k = 0; k < 3; k++) melt[i][P_UX + k] = fluid.U[k];
+    melt[i][P_SET] = 1.0;
+  }
+  for (int k = 0; k < 3; k++) fluid.U[k] = melt[i][P_UX + k];
+}
+
+/* ----------------------------------------------------------------------
    drag and buoyancy (eq. 2.14); gravity itself is fix gravity's
 ------------------------------------------------------------------------- */
 
@@ -328,12 +342,18 @@ void FixPowderMelt::post_force(int /*vflag*/)
   for (int i = 0; i < nlocal; i++) {
     if (!(mask[i] & groupbit) || melt[i][MOLTEN] != 0.0) continue;
     if (!provider->fluid_state(i, x[i], fluid)) continue;
+    parcel_velocity(i, fluid);
     mc::ParticleForces F;
     try {
       F = mc::drag_and_buoyancy(drag_model, fluid, v[i], 2.0 * radius[i], g);
     } catch (std::invalid_argument &e) {
       error->one(FLERR, "Fix powder/melt: atom {}: {}", atom->tag[i], e.what());
     }
+    // two-body drag with the fluid parcel (never past the common velocity; the parcel moves too)
+    const double beta = mc::two_body_drag_coefficient(F.beta, rmass[i], fluid.mass, in_setup ? 0.0 : dt);
+    for (int k = 0; k < 3; k++) F.drag[k] = beta * (fluid.U[k] - v[i][k]);
+    if (fluid.mass > 0.0 && !in_setup)
+      for (int k = 0; k < 3; k++) melt[i][P_UX + k] -= F.drag[k] * dt / fluid.mass;
     if (solid_flag && fluid.solid.present) {
       // the continuum's solid metal repels the particle as a granular wall
       const Eigen::Vector3d Fs = mc::solid_contact_force(
@@ -345,13 +365,6 @@ void FixPowderMelt::post_force(int /*vflag*/)
       f[i][k] += F.drag[k] + F.buoyancy[k];
       exchange[i].drag[k] = F.drag[k];
       if (!in_setup) melt[i][I_DX + k] += F.drag[k] * dt;
-    }
-    // explicit drag overshoots once dt exceeds the particle response time m / beta
-    if (!warned_drag && F.beta * dt > rmass[i]) {
-      warned_drag = 1;
-      error->warning(FLERR, "Fix powder/melt: time step {:.3g} s exceeds the drag response "
-                            "time {:.3g} s of atom {}; explicit drag is inaccurate or unstable",
-                     dt, rmass[i] / F.beta, atom->tag[i]);
     }
   }
 }
@@ -386,6 +399,7 @@ void FixPowderMelt::end_of_step()
     if (!(mask[i] & groupbit) || melt[i][MOLTEN] != 0.0) continue;
     if (melt[i][MASS0] <= 0.0) melt[i][MASS0] = rmass[i];  // inserted during the run
     if (!provider->fluid_state(i, x[i], fluid)) continue;
+    parcel_velocity(i, fluid);
 
     const double d = 2.0 * radius[i], m = rmass[i];
     mc::MeltStepResult r;

@@ -93,7 +93,10 @@ class FixPowderMelt : public Fix {
   // per-atom columns; dumps see TEMP and FRAC. MOLTEN = 1: fully molten, booked, removed
   // at the next step's pre_exchange. I_* accumulate over the coupling interval: molten
   // mass, enthalpy and momentum handed over, heat absorbed, drag impulse, laser energy
-  enum { TEMP, FRAC, HSPEC, MASS0, MOLTEN, I_MASS, I_ENTH, I_PX, I_PY, I_PZ, I_HEAT, I_DX, I_DY, I_DZ, I_LASER, NCOL };
+  // P_*: the velocity of the fluid parcel the particle drags over the coupling interval
+  // (two-body drag; P_SET 0: not yet taken from the fluid this interval)
+  enum { TEMP, FRAC, HSPEC, MASS0, MOLTEN, I_MASS, I_ENTH, I_PX, I_PY, I_PZ, I_HEAT, I_DX, I_DY, I_DZ, I_LASER,
+         P_UX, P_UY, P_UZ, P_SET, NCOL };
   std::vector<meltdem::coupling::ExchangeRecord> finished;  // deleted this interval
   meltdem::coupling::ExchangeRecord record(int i) const;
   meltdem::coupling::MeltMaterial mat;
@@ -114,11 +117,13 @@ class FixPowderMelt : public Fix {
   meltdem::coupling::ExactSum ledger[6];
   double vector_all[6];
   int vector_dirty;
-  int warned_drag;
 
   std::vector<int> gravity_fixes;
 
   void refresh_output(int i);
+  // the fluid velocity the particle drags: its parcel's (taken from fluid at the first
+  // use in a coupling interval) when the fluid has a parcel mass
+  void parcel_velocity(int i, meltdem::coupling::FluidState &fluid);
   int delete_molten();
   bigint delete_local(const std::function<bool(int)> &doomed);
 };

@@ -11,13 +11,16 @@ SampledFluid sample_fluid(const std::vector<CellWeight> &weights, const CellFlui
     throw std::invalid_argument("sample_fluid: T, k, rho, mu, cp and U are required");
   SampledFluid s;
   FluidState &q = s.fluid;
-  double capacity = 0.0, heat = 0.0;
+  double capacity = 0.0, heat = 0.0, mass = 0.0, momentum[3] = {0.0, 0.0, 0.0};
   for (const CellWeight &cw : weights) {
     const long c = cw.cell;
     const double w = cw.weight;
     q.T += w * f.T[c];
     capacity += w * f.rho[c] * f.cp[c];
     heat += w * f.rho[c] * f.cp[c] * f.T[c];
+    mass += w * f.rho[c];
+    if (f.volume) q.mass += w * f.rho[c] * f.volume[c];
+    for (int d = 0; d < 3; ++d) momentum[d] += w * f.rho[c] * f.U[3 * c + d];
     q.k += w * f.k[c];
     q.rho += w * f.rho[c];
     q.mu += w * f.mu[c];
@@ -27,6 +30,8 @@ SampledFluid sample_fluid(const std::vector<CellWeight> &weights, const CellFlui
     if (f.liquid_fraction) s.liquid_fraction += w * f.liquid_fraction[c];
   }
   if (capacity > 0.0) q.T = heat / capacity;
+  if (mass > 0.0)
+    for (int d = 0; d < 3; ++d) q.U[d] = momentum[d] / mass;
   return s;
 }
 

@@ -178,7 +178,7 @@ void ParallelExchange::sample_global(const CellFluidFields &f, std::vector<Sampl
 {
   if (!f.T || !f.k || !f.rho || !f.mu || !f.cp || !f.U)
     throw std::invalid_argument("particle exchange: T, k, rho, mu, cp and U are required to sample the fluid");
-  constexpr int kFields = 12;
+  constexpr int kFields = 17;
   const std::size_t n = all_.size();
   std::vector<double> partial(kFields * n, 0.0);
   for (std::size_t g = 0; g < n; ++g) {
@@ -196,6 +196,9 @@ void ParallelExchange::sample_global(const CellFluidFields &f, std::vector<Sampl
       if (f.liquid_fraction) q[9] += w * f.liquid_fraction[c];
       q[10] += w * f.rho[c] * f.cp[c];
       q[11] += w * f.rho[c] * f.cp[c] * f.T[c];
+      q[12] += w * f.rho[c];
+      for (int d = 0; d < 3; ++d) q[13 + d] += w * f.rho[c] * f.U[3 * c + d];
+      if (f.volume) q[16] += w * f.rho[c] * f.volume[c];
     }
   }
   if (n) MPI_Allreduce(MPI_IN_PLACE, partial.data(), int(kFields * n), MPI_DOUBLE, MPI_SUM, comm_);
@@ -208,6 +211,9 @@ void ParallelExchange::sample_global(const CellFluidFields &f, std::vector<Sampl
     for (int d = 0; d < 3; ++d) s.fluid.U[d] = q[5 + d];
     s.alpha_metal = q[8], s.liquid_fraction = q[9];
     if (q[10] > 0.0) s.fluid.T = q[11] / q[10];  // heat-capacity weighted (fluid_sampling.h)
+    if (q[12] > 0.0)
+      for (int d = 0; d < 3; ++d) s.fluid.U[d] = q[13 + d] / q[12];  // mass weighted
+    s.fluid.mass = q[16];
   }
 }
 
@@ -238,27 +244,40 @@ void ParallelExchange::deposit(const std::vector<Amounts> &local_amounts, std::v
   }
 }
 
-void ParallelExchange::deposit_heat(const std::vector<double> &local_heat, const CellFluidFields &f,
-                                    std::vector<Amounts> &cell_amounts) const
+void ParallelExchange::deposit_taken(const std::vector<double> &local_heat,
+                                     const std::vector<Eigen::Vector3d> &local_impulse, const CellFluidFields &f,
+                                     std::vector<Amounts> &cell_amounts) const
 {
-  if (local_heat.size() != std::size_t(counts_[rank_]))
-    throw std::invalid_argument("particle exchange: deposit_heat() needs one heat per located local particle");
-  if (!f.rho || !f.cp) throw std::invalid_argument("particle exchange: deposit_heat() needs rho and cp");
+  const std::size_t nlocal = std::size_t(counts_[rank_]);
+  if (local_heat.size() != nlocal || local_impulse.size() != nlocal)
+    throw std::invalid_argument("particle exchange: deposit_taken() needs one heat and impulse per located local particle");
+  if (!f.rho || !f.cp) throw std::invalid_argument("particle exchange: deposit_taken() needs rho and cp");
+  std::vector<double> mine;
+  mine.reserve(4 * nlocal);
+  for (std::size_t i = 0; i < nlocal; ++i) mine.insert(mine.end(), {local_heat[i], local_impulse[i].x(), local_impulse[i].y(), local_impulse[i].z()});
   std::vector<double> all;
   std::vector<int> counts, displs;
-  allgather_doubles(local_heat, 1, comm_, all, counts, displs);
-  // each particle's capacity sum over every rank's cells, then the shares
+  allgather_doubles(mine, 4, comm_, all, counts, displs);
+  // each particle's capacity and mass sums over every rank's cells, then the shares
   const std::size_t n = all_.size();
-  std::vector<double> capacity(n, 0.0);
+  std::vector<double> sums(2 * n, 0.0);
   for (std::size_t g = 0; g < n; ++g)
-    for (std::size_t k = start_[g]; k < start_[g + 1]; ++k) capacity[g] += weights_[k] * f.rho[cells_[k]] * f.cp[cells_[k]];
-  if (n) MPI_Allreduce(MPI_IN_PLACE, capacity.data(), int(n), MPI_DOUBLE, MPI_SUM, comm_);
-  for (std::size_t g = 0; g < n; ++g) {
-    if (!inside_[g] || all[g] == 0.0) continue;
     for (std::size_t k = start_[g]; k < start_[g + 1]; ++k) {
       const long c = cells_[k];
-      const double share = capacity[g] > 0.0 ? weights_[k] * f.rho[c] * f.cp[c] / capacity[g] : weights_[k];
-      cell_amounts.at(std::size_t(c))[kEnthalpy] -= share * all[g];
+      sums[2 * g] += weights_[k] * f.rho[c] * f.cp[c];
+      sums[2 * g + 1] += weights_[k] * f.rho[c];
+    }
+  if (n) MPI_Allreduce(MPI_IN_PLACE, sums.data(), int(2 * n), MPI_DOUBLE, MPI_SUM, comm_);
+  for (std::size_t g = 0; g < n; ++g) {
+    if (!inside_[g]) continue;
+    const double *a = &all[4 * g];
+    for (std::size_t k = start_[g]; k < start_[g + 1]; ++k) {
+      const long c = cells_[k];
+      const double heat_share = sums[2 * g] > 0.0 ? weights_[k] * f.rho[c] * f.cp[c] / sums[2 * g] : weights_[k];
+      const double mass_share = sums[2 * g + 1] > 0.0 ? weights_[k] * f.rho[c] / sums[2 * g + 1] : weights_[k];
+      Amounts &cell = cell_amounts.at(std::size_t(c));
+      cell[kEnthalpy] -= heat_share * a[0];
+      for (int d = 0; d < 3; ++d) cell[kMomX + d] -= mass_share * a[1 + d];
     }
   }
 }

@@ -1,5 +1,6 @@
 #include "meltdem/coupling/particle_forces.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace meltdem::coupling {
@@ -22,6 +23,13 @@ ParticleForces drag_and_buoyancy(DragModel model, const FluidState &fluid, const
     f.buoyancy[k] = vb * g[k];
   }
   return f;
+}
+
+double two_body_drag_coefficient(double beta, double m, double M, double dt)
+{
+  if (!(beta > 0.0) || !(dt > 0.0) || !(m > 0.0)) return beta;
+  const double mu = M > 0.0 ? m * M / (m + M) : m;
+  return std::min(beta, mu / dt);
 }
 
 }  // namespace meltdem::coupling

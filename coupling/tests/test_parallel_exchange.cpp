@@ -85,10 +85,11 @@ TEST_P(ParallelExchangeSerial, SamplingEqualsSampleFluid)
 }
 
 // A particle half in melt, half in gas (overlap, 4 cells across the interface): it sees the
-// melt's temperature (capacity-weighted), and the heat it absorbs is taken from the cells by
-// capacity, so the gas cells (1e-5 of the capacity) lose 1e-5 of their share by volume,
-// every covered cell the same temperature drop per covered volume, and the sum is exact.
-TEST_P(ParallelExchangeSerial, HeatComesFromTheCellsByCapacity)
+// melt's temperature and velocity (capacity- and mass-weighted), and the heat and impulse it
+// takes come from the cells by capacity and by mass, so the gas cells (1e-5 of the capacity,
+// 1e-3 of the mass) give that fraction of their share by volume, every covered cell the same
+// temperature and velocity change per covered volume, and the sums are exact.
+TEST_P(ParallelExchangeSerial, HeatAndImpulseComeFromTheCellsByCapacityAndMass)
 {
   const auto mesh = CartesianGridMesh::uniform(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(8, 8, 8), 8, 8, 8);
   const double rhocp_metal = 7430.0 * 965.0, rhocp_gas = 7.43 * 10.0;
@@ -100,7 +101,7 @@ TEST_P(ParallelExchangeSerial, HeatComesFromTheCellsByCapacity)
     rho.push_back(metal ? 7430.0 : 7.43);
     cp.push_back(metal ? 965.0 : 10.0);
     mu.push_back(1e-3);
-    U.insert(U.end(), {0.0, 0.0, 0.0});
+    U.insert(U.end(), {metal ? 1.0 : 0.0, metal ? 0.0 : 5.0, 0.0});
   }
   const CellFluidFields f{T.data(), k.data(), rho.data(), mu.data(), cp.data(), U.data(), nullptr, nullptr};
   ParallelExchange ex(mesh, GetParam(), MPI_COMM_SELF);
@@ -110,34 +111,43 @@ TEST_P(ParallelExchangeSerial, HeatComesFromTheCellsByCapacity)
   ex.sample(f, s);
   std::vector<CellWeight> w;
   ex.local_weights(0, w);
-  double metal_w = 0.0, cap = 0.0;
+  double metal_w = 0.0, cap = 0.0, mass = 0.0;
   for (auto &cw : w) {
     const bool metal = T[cw.cell] > 1000.0;
     metal_w += metal ? cw.weight : 0.0;
     cap += cw.weight * (metal ? rhocp_metal : rhocp_gas);
+    mass += cw.weight * (metal ? 7430.0 : 7.43);
   }
+  EXPECT_NEAR(s[0].fluid.U[0], metal_w * 7430.0 / mass, 1e-12);
+  EXPECT_NEAR(s[0].fluid.U[1], 5.0 * (1 - metal_w) * 7.43 / mass, 1e-12);
   const double expect_T = (metal_w * rhocp_metal * 2000.0 + (1 - metal_w) * rhocp_gas * 500.0) / cap;
   EXPECT_NEAR(s[0].fluid.T, expect_T, 1e-9 * expect_T);
   EXPECT_GT(s[0].fluid.T, 1999.9);  // the melt's, not the volume mean
   const double Q = 2.5e-6;
+  const Eigen::Vector3d I(3e-9, -1e-9, 2e-9);
   std::vector<Amounts> cells(std::size_t(mesh.n_cells()), Amounts{});
-  ex.deposit_heat({Q}, f, cells);
-  double taken = 0.0, from_gas = 0.0;
+  ex.deposit_taken({Q}, {I}, f, cells);
+  double taken = 0.0, from_gas = 0.0, impulse_x = 0.0;
   for (long c = 0; c < mesh.n_cells(); ++c) {
     taken -= cells[std::size_t(c)][kEnthalpy];
+    impulse_x -= cells[std::size_t(c)][kMomX];
     if (T[std::size_t(c)] < 1000.0) from_gas -= cells[std::size_t(c)][kEnthalpy];
   }
-  meltdem::testing::expect_relative(std::string("deposit_heat ") + to_string(GetParam()) + ": heat taken from the cells",
+  meltdem::testing::expect_relative(std::string("deposit_taken ") + to_string(GetParam()) + ": heat taken from the cells",
                                     taken, Q, 1e-14);
+  meltdem::testing::expect_relative(std::string("deposit_taken ") + to_string(GetParam()) +
+                                        ": impulse taken from the cells (x)", impulse_x, I.x(), 1e-14);
   // the gas's share: its capacity-weighted fraction
   EXPECT_NEAR(from_gas, Q * (1 - metal_w) * rhocp_gas / cap, 1e-12 * Q);
   if (metal_w < 1.0) EXPECT_LT(from_gas, 1e-4 * Q);
-  // each covered cell: temperature drop per covered volume fraction the same
+  // each covered cell: temperature and velocity change per covered volume fraction the same
   for (auto &cw : w) {
-    const double c = T[cw.cell] > 1000.0 ? rhocp_metal : rhocp_gas;
+    const bool metal = T[cw.cell] > 1000.0;
+    const double c = metal ? rhocp_metal : rhocp_gas, r = metal ? 7430.0 : 7.43;
     EXPECT_NEAR(-cells[std::size_t(cw.cell)][kEnthalpy] / (c * cw.weight), Q / cap, 1e-12 * Q / cap);
+    EXPECT_NEAR(-cells[std::size_t(cw.cell)][kMomY] / (r * cw.weight), I.y() / mass, 1e-12 * std::abs(I.y()) / mass);
   }
-  EXPECT_THROW(ex.deposit_heat({}, f, cells), std::invalid_argument);
+  EXPECT_THROW(ex.deposit_taken({}, {}, f, cells), std::invalid_argument);
 }
 
 INSTANTIATE_TEST_SUITE_P(Models, ParallelExchangeSerial,

@@ -46,8 +46,9 @@ TEST_P(ParallelExchangeMpi, EqualsOneRank)
   std::vector<Amounts> cells_serial(std::size_t(whole.n_cells()), Amounts{});
   serial.deposit(k.amounts, cells_serial);
   std::vector<double> heat;
-  for (const Amounts &a : k.amounts) heat.push_back(a[kEnthalpy] * 0.3);
-  serial.deposit_heat(heat, fs, cells_serial);
+  std::vector<Eigen::Vector3d> impulse;
+  for (const Amounts &a : k.amounts) heat.push_back(a[kEnthalpy] * 0.3), impulse.push_back(Eigen::Vector3d(a[kMomY], a[kMomZ], a[kMomX]));
+  serial.deposit_taken(heat, impulse, fs, cells_serial);
   std::vector<SampledFluid> sampled_serial;
   serial.sample(fs, sampled_serial);
 
@@ -55,10 +56,11 @@ TEST_P(ParallelExchangeMpi, EqualsOneRank)
   std::vector<ParticleShape> my_particles;
   std::vector<Amounts> my_amounts;
   std::vector<double> my_heat;
+  std::vector<Eigen::Vector3d> my_impulse;
   std::vector<std::size_t> my_index;
   for (std::size_t i = 0; i < k.particles.size(); ++i)
     if (int(i % 2) == rank)
-      my_particles.push_back(k.particles[i]), my_amounts.push_back(k.amounts[i]), my_heat.push_back(heat[i]),
+      my_particles.push_back(k.particles[i]), my_amounts.push_back(k.amounts[i]), my_heat.push_back(heat[i]), my_impulse.push_back(impulse[i]),
           my_index.push_back(i);
   std::vector<double> Tp, onep, Up;
   const CellFluidFields fp = fields(mine, Tp, onep, Up);
@@ -67,7 +69,7 @@ TEST_P(ParallelExchangeMpi, EqualsOneRank)
   ASSERT_EQ(parallel.global_particles(), std::int64_t(k.particles.size()));
   std::vector<Amounts> cells_parallel(std::size_t(mine.n_cells()), Amounts{});
   parallel.deposit(my_amounts, cells_parallel);
-  parallel.deposit_heat(my_heat, fp, cells_parallel);
+  parallel.deposit_taken(my_heat, my_impulse, fp, cells_parallel);
   std::vector<SampledFluid> sampled_parallel;
   parallel.sample(fp, sampled_parallel);
 

@@ -37,3 +37,28 @@ TEST(ParticleForces, Thesis23SlipReynolds)
                   0.75 * (M_PI / 6.0 * 8020.0 * 2.16e-10) * drag_coefficient_thesis(F.Re) * F.Re * f.mu /
                       (8020.0 * 3.6e-7) * -2.0, 1e-12);
 }
+
+// Two-body drag: explicit while a step stays short of the common velocity, at most the impulse
+// that brings grain and parcel to it; the parcel never passes the grain that drives it.
+TEST(ParticleForces, TwoBodyDragNeverOvershoots)
+{
+  const double beta = 1e-6, m = 1e-9, dt = 1e-4;   // beta dt / m = 0.1: explicit
+  EXPECT_DOUBLE_EQ(two_body_drag_coefficient(beta, m, 0.0, dt), beta);
+  EXPECT_DOUBLE_EQ(two_body_drag_coefficient(beta, m, 1e-6, dt), beta);
+  // a light parcel (the paper's gas in one 10 um cell beside a 20 um grain)
+  const double M = 7.43e-15, mg = 3.1e-11, b = 1.4e-7, h = 6e-8;
+  const double be = two_body_drag_coefficient(b, mg, M, h);
+  const double mu = mg * M / (mg + M);
+  meltdem::testing::expect_relative("two-body drag: coefficient for a light parcel = mu/dt", be, mu / h, 1e-14);
+  // one step from grain 1 m/s, parcel at rest: both end at the common velocity, momentum kept
+  double v = 1.0, U = 0.0;
+  const double F = be * (U - v);
+  v += F * h / mg;
+  U -= F * h / M;
+  meltdem::testing::expect_relative("two-body drag: grain and parcel at the common velocity", U, v, 1e-9);
+  meltdem::testing::expect_relative("two-body drag: pair momentum", mg * v + M * U, mg * 1.0, 1e-14);
+  EXPECT_LE(U, v * (1 + 1e-12));  // the parcel never passes the grain
+  // explicit drag would have carried the pair past the common velocity (beta dt > mu)
+  EXPECT_GT(b * h / mu, 1.1);
+}
+

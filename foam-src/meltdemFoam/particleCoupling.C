@@ -350,7 +350,8 @@ void Foam::meltdem::particleCoupling::advance(Time& runTime, const fluidFields& 
         cp.cdata(),
         reinterpret_cast<const double*>(f.U.primitiveField().cdata()),
         f.alphaMetal.primitiveField().cdata(),
-        f.liquidFraction.primitiveField().cdata()
+        f.liquidFraction.primitiveField().cdata(),
+        mesh_.V().cdata()
     };
     std::vector<mc::SampledFluid> sampled;
     exchange_->sample_global(cells, sampled);
@@ -453,6 +454,20 @@ void Foam::meltdem::particleCoupling::advance(Time& runTime, const fluidFields& 
     const bool shortened = dtSub < dtDem*(1 - 1e-12);
     if (shortened) lammps_->set_timestep(dtSub);
     lammps_->advance(int(n), records);
+    if (thermal_ && boundsSet_)
+    {
+        // particles inserted during the step (fix powder/insert temp) widen the range:
+        // their temperature is as legitimate a bound as the old particles' (the others'
+        // end temperatures lie between their start and their cells')
+        scalar lo = GREAT, hi = -GREAT;
+        for (const auto& r : records)
+        {
+            lo = min(lo, r.T);
+            hi = max(hi, r.T);
+        }
+        Tlo_ = min(Tlo_, returnReduce(lo, minOp<scalar>()));
+        Thi_ = max(Thi_, returnReduce(hi, maxOp<scalar>()));
+    }
     // back to the DEM's own step unless the input changed it meanwhile (fix powder/dt)
     if (shortened && lammps_->timestep() == dtSub) lammps_->set_timestep(dtDem);
     lammpsSeconds_ += seconds() - w0;
@@ -471,6 +486,18 @@ void Foam::meltdem::particleCoupling::advance(Time& runTime, const fluidFields& 
             << "(they left its box); make the LAMMPS box larger than the mesh so that "
             << "particles leave the mesh first and are booked as outflow"
             << exit(FatalError);
+    }
+
+    // a particle that melted away within the step spreads its melt with the size it had
+    // at the start of the step, not its last solid size (one cell in fine meshes)
+    {
+        std::unordered_map<std::int64_t, double> startRadius;
+        for (const auto& r : start) startRadius[r.id] = r.radius;
+        for (auto& r : records)
+        {
+            const auto it = startRadius.find(r.id);
+            if (r.mass == 0 && it != startRadius.end()) r.radius = max(r.radius, it->second);
+        }
     }
 
     // a particle that melted away within the step stopped absorbing its light: the beam
@@ -492,10 +519,11 @@ void Foam::meltdem::particleCoupling::advance(Time& runTime, const fluidFields& 
     relocate(shapesOf(records));
     inside_.clear();
     lost_.clear();
-    // the melt (mass, its enthalpy, momentum less the drag impulse) goes by the volume
-    // weights, the heat the particle absorbed comes from the cells by capacity weights
+    // the melt (mass, its enthalpy and momentum) goes by the volume weights, the heat and
+    // the impulse the particle took come from the cells by capacity and mass weights
     std::vector<mc::Amounts> amounts;
     std::vector<double> heat;
+    std::vector<Eigen::Vector3d> impulse;
     std::vector<std::int64_t> leaving;
     for (std::size_t i = 0; i < records.size(); ++i)
     {
@@ -503,23 +531,22 @@ void Foam::meltdem::particleCoupling::advance(Time& runTime, const fluidFields& 
         if (exchange_->inside(i))
         {
             inside_.push_back(r);
-            amounts.push_back
-            (
-                mc::make_amounts(r.mass_out, r.enthalpy_out, r.momentum_out - r.impulse_from_fluid)
-            );
+            amounts.push_back(mc::make_amounts(r.mass_out, r.enthalpy_out, r.momentum_out));
             heat.push_back(r.heat_absorbed);
+            impulse.push_back(r.impulse_from_fluid);
         }
         else
         {
             lost_.push_back(r);
             amounts.push_back(mc::Amounts{});
             heat.push_back(0);
+            impulse.push_back(Eigen::Vector3d::Zero());
             if (r.mass > 0) leaving.push_back(r.id);
         }
     }
     std::vector<mc::Amounts> deposited(std::size_t(nCells), mc::Amounts{});
     exchange_->deposit(amounts, deposited);
-    exchange_->deposit_heat(heat, cells, deposited);
+    exchange_->deposit_taken(heat, impulse, cells, deposited);
 
     const scalarField& V = mesh_.V();
     forAll(V, celli)
@@ -537,13 +564,17 @@ void Foam::meltdem::particleCoupling::advance(Time& runTime, const fluidFields& 
     // fluid step collapses) and alpha overfills (the particle/cell size ratio is
     // beyond what the distribution model spreads)
     const scalar filled = gMax(volumeSource_.field())*elapsed;
-    if (filled > 1)
+    if (filled > 1 + 1e-6)
     {
         FatalErrorInFunction
             << "the molten metal of one step fills a cell " << filled << " times: distribution "
-            << mc::to_string(model_) << " puts more metal into a cell than it holds (particles "
-            << "larger than the cells). Use distribution overlap (spreads each particle over "
-            << "all the cells it covers) or coarser cells, or a shorter fluid step (maxDeltaT)"
+            << mc::to_string(model_) << " spreads each particle's melt over the cells of its "
+            << "end-of-step shape (one cell for centre, at most 7 for neighbours; a particle "
+            << "that melted away within the step by its start-of-step size), and particles larger "
+            << "than the cells give them more metal than they hold. Use "
+            << (model_ == mc::DistributionModel::Overlap ? "" : "distribution overlap, ")
+            << "a shorter fluid step (maxDeltaT) so that large particles melt over several "
+            << "steps, or coarser cells"
             << exit(FatalError);
     }
 
@@ -687,7 +718,8 @@ void Foam::meltdem::particleCoupling::checkBounded() const
     {
         FatalErrorInFunction
             << "the continuum temperature left [" << Tlo_ << ", " << Thi_ << "] K, the range "
-            << "of continuum and particles before the step (T min/max now " << Tmin << ", "
+            << "of continuum and particles before the step and of the particles after it "
+            << "(T min/max now " << Tmin << ", "
             << Tmax << " K): the particles exchanged more heat over the fluid step ("
             << mesh_.time().deltaTValue() << " s, fluid frozen) than their cells hold. "
             << "The worst cell's heat capacity over its particles' conductance is "

@@ -13,9 +13,11 @@ Over a fluid step the particle heats with the fluid frozen (explicit coupling); 
   melt_pool: the same particle into liquid metal at 2000 K (k 30): melts within the first step
             (0.39 ms), the same heat to 1e-10, T in [300, 2000] K, balances closed.
   pool_fine: the same in 20 um cells (d/dx = 10, distribution overlap): the particle melts away
-            within the 0.5 ms step, so its melt is spread by its last solid size: 524 cell volumes
-            into one cell. Must stop, naming maxDeltaT (and the distribution), the number exact;
-            with maxDeltaT 1e-5 s it melts over many steps: bounded, closed.
+            within the 0.5 ms step; its melt is spread by its start-of-step size (by its last
+            solid size it went into one cell: 524 cell volumes), so the cells it covered, already
+            full of melt, get their own volume again in one step (the particle's volume is not
+            excluded from the continuum). Must stop after step 1 naming maxDeltaT; with maxDeltaT
+            1e-5 s it melts over many steps: bounded, closed.
   overdraw: d = 600 um, cp 500, Tm 3000 K (no melting): m cp = 4.5e-4 J/K against a cell of
             C = rho cp h^3 = 2.9e-6 J/K. Heating with the gas frozen for 0.5 ms, it takes 0.19 J,
             40x what the cell holds above 300 K: the cell falls to -151 K (without the guard, with the
@@ -121,14 +123,12 @@ def main():
     fine = dict(lx=15 * hf, ly=30 * hf, lz=15 * hf, h=hf, u=0.0)
     p = dict(particle(200e-6, 48.35, 1000.0), x=7.5 * hf, y=7.5 * hf, z=7.5 * hf)
     case, rc, log, Tr = run(work, "pool_fine", p, 1e-3, 2e-3, floor=(15 * hf, 2000.0), channel=fine, model="overlap")
-    msg = re.search(r"the molten metal of one step fills a cell (\S+) times.*", log)
+    msg = re.search(r"(the molten metal of one step fills a cell|the continuum temperature left).*", log)
     print(f"{T}: pool_fine: {msg.group(0) if msg else 'no message'}")
     ok &= check_absolute(T, "pool_fine: exit code is nonzero (stopped)", int(rc != 0), 1, 0)
     ok &= check_absolute(T, "pool_fine: no NaN before the stop", no_nan(log), 1, 0)
-    ok &= check_relative(T, "pool_fine: cell volumes of metal in one cell (message) vs V_p / V_cell",
-                         float(msg.group(1)) if msg else math.nan, m / p["rho"] / hf**3, 1e-9)
-    ok &= check_absolute(T, "pool_fine: the message names maxDeltaT and the distribution",
-                         int(bool(msg) and "maxDeltaT" in msg.group(0) and "distribution overlap" in msg.group(0)), 1, 0)
+    ok &= check_absolute(T, "pool_fine: fluid steps before the stop", len(re.findall(r"^Time = ", log, re.M)), 1, 0)
+    ok &= check_absolute(T, "pool_fine: the message names maxDeltaT", int(bool(msg) and "maxDeltaT" in msg.group(0)), 1, 0)
     case, rc, log, Tr = run(work, "pool_fine_knob", p, 1e-5, 5e-4, floor=(15 * hf, 2000.0), channel=fine,
                             model="overlap")
     pc, led = cc.particles_csv(case), cc.ledger(case)

@@ -21,6 +21,7 @@ struct CellFluidFields {
   const double *U = nullptr;
   const double *alpha_metal = nullptr;
   const double *liquid_fraction = nullptr;
+  const double *volume = nullptr;  // cell volumes: gives FluidState::mass (null: mass 0)
 };
 
 struct SampledFluid {
@@ -34,7 +35,9 @@ struct SampledFluid {
 // covered cells would reach if mixed; the plain mean where all capacities are zero): a
 // particle half in melt, half in gas sees the melt's temperature, not the middle, and
 // the heat it takes is drawn from the cells by the same w rho cp weights
-// (ParallelExchange::deposit_heat), so gas beside the melt gives almost none of it.
+// (ParallelExchange::deposit_taken), so gas beside the melt gives almost none of it. The
+// velocity likewise is the mass-weighted mean sum w rho U / sum w rho (the mixture's
+// momentum over its mass), and the drag reaction is split by w rho.
 // Throws std::invalid_argument for empty weights or a missing required field.
 SampledFluid sample_fluid(const std::vector<CellWeight> &weights, const CellFluidFields &fields);
 

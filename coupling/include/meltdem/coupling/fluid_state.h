@@ -18,6 +18,8 @@ struct FluidState {
   double heat_source = 0.0;       // power from outside the fluid (laser) absorbed [W]
   bool thermal = true;            // false: the continuum solves no energy equation, so the
                                   // particle is isothermal (drag only: no heat, no melting)
+  double mass = 0.0;              // fluid mass the particle exchanges momentum with [kg]:
+                                  // sum of w rho V over its cells (0: unbounded, 'ambient')
 };
 
 class FluidStateProvider {

@@ -15,10 +15,10 @@
 //   overlap    : sphere-cell overlap volumes (cell bounding boxes), part outside the
 //                mesh dropped, the rest renormalised.
 // sample() averages the continuum's cell fields with these weights (what the particle
-// sees; its temperature weighted by heat capacity too); deposit() spreads what the
-// particles hand over onto the cells with the same weights, and deposit_heat() takes the
-// heat they absorbed from the cells with the capacity weights, so the exchange is symmetric
-// and sums to what was handed over to round-off.
+// sees; its temperature weighted by heat capacity and its velocity by mass too); deposit()
+// spreads the melt the particles hand over onto the cells with the same weights, and
+// deposit_taken() takes the heat and impulse they took from the cells with the capacity and
+// mass weights, so the exchange is symmetric and sums to what was handed over to round-off.
 // Serial runs use the same code, so np N equals np 1 to round-off.
 #include "meltdem/coupling/exchange_record.h"
 #include "meltdem/coupling/fluid_sampling.h"
@@ -76,14 +76,16 @@ class ParallelExchange {
   // rank: cell_amounts has one entry per local cell. Amounts of particles outside the
   // mesh are not deposited (the caller books them as outflow).
   void deposit(const std::vector<Amounts> &local_amounts, std::vector<Amounts> &cell_amounts) const;
-  // Collective. Takes the heat each local particle absorbed (J; negative: gave) out of the
-  // cells' enthalpy, particle i's share of cell c being w_ic rho_c cp_c / sum_c' w_ic' rho_c'
-  // cp_c' (volume weights where the capacities are all zero): the capacity weights its
-  // fluid temperature was sampled with, so every cell it covers changes temperature alike
-  // and a gas cell beside melt (1e-5 of the capacity) gives almost nothing. Sums to the
-  // heat exactly; particles outside the mesh give nothing.
-  void deposit_heat(const std::vector<double> &local_heat, const CellFluidFields &fields,
-                    std::vector<Amounts> &cell_amounts) const;
+  // Collective. Takes what each local particle took from the fluid out of the cells: its
+  // heat (J; negative: gave) from the enthalpy with particle i's share of cell c
+  // w_ic rho_c cp_c / sum_c' w_ic' rho_c' cp_c', its drag and buoyancy impulse (kg m/s)
+  // from the momentum with the share w_ic rho_c / sum_c' w_ic' rho_c' (volume weights where
+  // the sums are zero): the weights its fluid temperature and velocity were sampled with,
+  // so every cell it covers changes temperature and velocity alike, and a gas cell beside
+  // melt (1e-5 of the heat capacity, 1e-2..1e-4 of the mass) gives almost nothing. Sums to
+  // what was taken exactly; particles outside the mesh give nothing.
+  void deposit_taken(const std::vector<double> &local_heat, const std::vector<Eigen::Vector3d> &local_impulse,
+                     const CellFluidFields &fields, std::vector<Amounts> &cell_amounts) const;
 
   // weights of global particle g over this rank's cells (for tests and diagnostics)
   void local_weights(std::int64_t g, std::vector<CellWeight> &out) const;

@@ -22,4 +22,14 @@ double slip_reynolds(const FluidState &fluid, const double v[3], double d);
 ParticleForces drag_and_buoyancy(DragModel model, const FluidState &fluid, const double v[3],
                                  double d, const double g[3]);
 
+// Drag between a particle (mass m) and the fluid parcel it exchanges momentum with (mass M,
+// FluidState::mass; M <= 0: unbounded) over a step dt, as two bodies: the coefficient to use
+// in F = beta_eff (U - v), the parcel then changing by -F dt / M, is
+//   beta_eff = min(beta, mu / dt),  mu = m M / (m + M),
+// explicit drag while a step cannot carry the pair past their common velocity, and at most
+// the impulse that brings both to it in one step (explicit drag overshoots once beta dt > mu:
+// a grain whose response time is shorter than the step, or a light gas parcel pushed past the
+// grain that drives it, which then grows without bound). The pair's momentum is conserved.
+double two_body_drag_coefficient(double beta, double m, double M, double dt);
+
 }  // namespace meltdem::coupling
