@@ -22,7 +22,7 @@ import pbf  # noqa: E402
 import foamcase as fc  # noqa: E402
 from pbf_point import common_checks, run_case  # noqa: E402
 
-TEST = "scenes.pbf_line"
+TEST = "scenes.pbf-line"
 
 
 def main():

@@ -21,7 +21,7 @@ import pbf  # noqa: E402
 import coupledcase as cc  # noqa: E402
 import foamcase as fc  # noqa: E402
 
-TEST = "scenes.pbf_point"
+TEST = "scenes.pbf-point"
 
 
 # wall-clock limit of the solver: the CI variant takes ~2 min idle; a run whose fluid step
