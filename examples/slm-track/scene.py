@@ -52,7 +52,7 @@ GAS_CP_CASE, GAS_MU_CASE = GAS["cp"], 1e-8
 T0 = 300.0
 DEM_DT = 5e-9                                      # s: 1/10 of the Hertz time of two 15 um grains at 1 m/s
 VMAX_DEM = 10.0                                    # m/s: speed limit of the DEM integration (see in.particles)
-FLUID_DT = 1e-6                                    # s: fluid step (fixed, see README)
+FLUID_DT = 5e-7                                    # s: fluid step (fixed, see README)
 SURFACE = False                                    # surface tension and Marangoni (see README)
 G = 9.81                                            # the bed was poured at 10 g; the scan runs at 1 g
 
