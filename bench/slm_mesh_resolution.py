@@ -29,6 +29,7 @@ def main():
     ap.add_argument("--bed")
     ap.add_argument("--plot-only", action="store_true", help="re-plot from WORK/results.json")
     ap.add_argument("--gas-cp", type=float, default=1e5, help="gas heat capacity (see below)")
+    ap.add_argument("--fluid-dt", type=float, default=1e-6, help="fluid step [s] (the table: 1e-6)")
     ap.add_argument("--strict", action="store_true", help="exit 1 when a point did not run (smoke test)")
     ap.add_argument("--out", default=HERE, help="folder of the .md and .png (default: bench/)")
     a = ap.parse_args()
@@ -45,7 +46,7 @@ def main():
         for h in [float(c) for c in a.cells.split(",")]:
             case = os.path.join(a.work, f"cell_{h * 1e6:g}um")
             t = time.time()
-            scene.build(case, "ci", cell=h, bed=os.path.abspath(bed), gas_cp=a.gas_cp)
+            scene.build(case, "ci", cell=h, bed=os.path.abspath(bed), gas_cp=a.gas_cp, fluid_dt=a.fluid_dt)
             try:
                 scene.run(case, a.np)
                 s = scene.analyse(case)
