@@ -6,8 +6,8 @@ then 2 m/s over 60 um, off at 40 us, end 45 us; recoil and evaporation on.
 
 References: exact ones as in pbf_point (laser energy, grain mass, ledger); the melt-pool width
 vs the Eagar-Tsai conduction solution for the same Gaussian source at 2 m/s on a half space
-(20 %; the CI substrate is 40 um thick and 160 um wide and the beam moves only 60 um, so
-neither a half space nor a quasi-steady pool: booked XFAIL when it misses).
+(20 %; the CI substrate is 40 um thick and 160 um wide and the beam moves only 60 um, so it
+is neither a half space nor a quasi-steady pool: measured 120 vs 140 um, -14 %).
 """
 import os
 import sys
@@ -17,10 +17,10 @@ SRC = os.environ["MELTDEM_SOURCE_DIR"]
 sys.path.insert(0, os.path.join(SRC, "tests", "support"))
 sys.path.insert(0, os.path.join(SRC, "tests", "scenes", "pbf_point"))
 sys.path.insert(0, os.path.join(SRC, "examples", "pbf-point"))
-from meltdem_report import check_relative  # noqa: E402
+from meltdem_report import check_at_least, check_relative  # noqa: E402
 import pbf  # noqa: E402
 import foamcase as fc  # noqa: E402
-from pbf_point import common_checks, run_case  # noqa: E402
+from pbf_point import common_checks, run_case, stopped  # noqa: E402
 
 TEST = "scenes.pbf-line"
 
@@ -33,8 +33,9 @@ def main():
     ok = common_checks(TEST, case, s, stop)
     ok &= check_relative(TEST, "melt pool width while moving [um] vs Eagar-Tsai (2 m/s, conduction)",
                          s["melt_pool_width_moving_um"], s["eagar_tsai_width_um"], 0.2,
-                         xfail="CI pool: 40 um substrate, 160 um wide box at 500 K, 60 um of travel "
-                               "(not the half space and quasi-steady pool of Eagar-Tsai)")
+                         xfail=stopped(s, stop))
+    ok &= check_at_least(TEST, "grains ejected (paper: ejected ahead of and around the pool)",
+                         s["grains_ejected"], 1, xfail=stopped(s, stop))
     return fc.finish(ok, work, keep)
 
 
