@@ -200,8 +200,9 @@ run             0
 
 
 def build(case, variant, cell=None, bed=None, track=None, distribution="overlap", np_=1, gas_cp=None, fluid_dt=None,
-          gas_mu=None):
+          gas_mu=None, surface=None):
     v = dict(VARIANTS[variant])
+    surface = SURFACE if surface is None else surface
     gas_cp = gas_cp or GAS_CP_CASE
     gas_mu = gas_mu or GAS_MU_CASE
     if cell:
@@ -224,7 +225,7 @@ def build(case, variant, cell=None, bed=None, track=None, distribution="overlap"
     # fixed sub-cycles (see README): the fluid step is n_sub DEM steps (FLUID_DT; below the
     # capillary limit when surface tension is on)
     fluid_dt = fluid_dt or FLUID_DT
-    fluid_dt = min(fluid_dt, dt_cap) if SURFACE else fluid_dt
+    fluid_dt = min(fluid_dt, dt_cap) if surface else fluid_dt
     n_sub = max(1, int(round(fluid_dt / DEM_DT)))
     cc.box_mesh(case, (0.0, -v["sub"], 0.0), (v["lx"], v["top"], v["lz"]), n,
                 {"substrate": ("wall", ["ymin"]), "atmosphere": ("patch", ["ymax"]),
@@ -274,8 +275,8 @@ def build(case, variant, cell=None, bed=None, track=None, distribution="overlap"
     tStop        {t_scan!r};
 }}
 """
-    fc.meltdem_properties(case, physics=dict(flow="on", energy="on", darcy="on", surfaceTension="on" if SURFACE else "off",
-                                             marangoni="on" if SURFACE else "off", laser="on", particles="on"),
+    fc.meltdem_properties(case, physics=dict(flow="on", energy="on", darcy="on", surfaceTension="on" if surface else "off",
+                                             marangoni="on" if surface else "off", laser="on", particles="on"),
                           surface=dict(sigma0=SIGMA0, dSigmadT=DSIGMA, Tsigma0=TMELT, sigmaMin=0.2),
                           extra=f"""metal {{ cp {CP!r}; k {K!r}; L {LATENT!r}; Tsolidus {TSOL!r}; Tliquidus {TLIQ!r}; }}
 gas {{ cp {gas_cp!r}; k {GAS['k']!r}; }}
@@ -568,13 +569,14 @@ def main(argv=None):
     ap.add_argument("--distribution", default="overlap", choices=["centre", "neighbours", "overlap"])
     ap.add_argument("--gas-cp", type=float, help="gas heat capacity [J/kg/K] (default argon's 520)")
     ap.add_argument("--fluid-dt", type=float, help=f"fluid step [s] (default {FLUID_DT:g})")
+    ap.add_argument("--surface", action="store_true", help="surface tension and Marangoni on (see README)")
     ap.add_argument("--gas-mu", type=float, help="gas viscosity [Pa s] (default argon's 2.2e-5)")
     a = ap.parse_args(argv)
     case = os.path.abspath(a.case)
     variant = "full" if a.full else "ci"
     if a.command in ("build", "all"):
         build(case, variant, a.cell, a.bed and os.path.abspath(a.bed), a.track, a.distribution, a.np, a.gas_cp,
-              a.fluid_dt, a.gas_mu)
+              a.fluid_dt, a.gas_mu, a.surface or None)
     if a.command in ("run", "all"):
         run(case, a.np)
     if a.command in ("analyse", "all"):
