@@ -8,6 +8,7 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <unordered_map>
 
 namespace meltdem::coupling {
 
@@ -244,22 +245,33 @@ void ParallelExchange::deposit(const std::vector<Amounts> &local_amounts, std::v
   }
 }
 
-void ParallelExchange::deposit_taken(const std::vector<double> &local_heat,
-                                     const std::vector<Eigen::Vector3d> &local_impulse, const CellFluidFields &f,
+void ParallelExchange::deposit_taken(const std::vector<std::int64_t> &ids, const std::vector<double> &heat,
+                                     const std::vector<Eigen::Vector3d> &impulse, const CellFluidFields &f,
                                      std::vector<Amounts> &cell_amounts) const
 {
-  const std::size_t nlocal = std::size_t(counts_[rank_]);
-  if (local_heat.size() != nlocal || local_impulse.size() != nlocal)
-    throw std::invalid_argument("particle exchange: deposit_taken() needs one heat and impulse per located local particle");
+  const std::size_t nmine = ids.size();
+  if (heat.size() != nmine || impulse.size() != nmine)
+    throw std::invalid_argument("particle exchange: deposit_taken() needs one heat and impulse per particle id");
   if (!f.rho || !f.cp) throw std::invalid_argument("particle exchange: deposit_taken() needs rho and cp");
+  // any rank may report any located particle (it may have moved to another DEM rank since
+  // it was located): gather (id, heat, impulse) and find each located particle's entry
   std::vector<double> mine;
-  mine.reserve(4 * nlocal);
-  for (std::size_t i = 0; i < nlocal; ++i) mine.insert(mine.end(), {local_heat[i], local_impulse[i].x(), local_impulse[i].y(), local_impulse[i].z()});
-  std::vector<double> all;
+  mine.reserve(5 * nmine);
+  for (std::size_t i = 0; i < nmine; ++i)
+    mine.insert(mine.end(), {double(ids[i]), heat[i], impulse[i].x(), impulse[i].y(), impulse[i].z()});
+  std::vector<double> gathered;
   std::vector<int> counts, displs;
-  allgather_doubles(mine, 4, comm_, all, counts, displs);
-  // each particle's capacity and mass sums over every rank's cells, then the shares
+  allgather_doubles(mine, 5, comm_, gathered, counts, displs);
+  std::unordered_map<std::int64_t, std::size_t> entry;
+  for (std::size_t k = 0; 5 * k < gathered.size(); ++k) entry[std::int64_t(gathered[5 * k])] = k;
   const std::size_t n = all_.size();
+  std::vector<double> all(4 * n, 0.0);
+  for (std::size_t g = 0; g < n; ++g) {
+    const auto it = entry.find(all_[g].id);
+    if (it == entry.end()) continue;
+    for (int q = 0; q < 4; ++q) all[4 * g + q] = gathered[5 * it->second + 1 + q];
+  }
+  // each particle's capacity and mass sums over every rank's cells, then the shares
   std::vector<double> sums(2 * n, 0.0);
   for (std::size_t g = 0; g < n; ++g)
     for (std::size_t k = start_[g]; k < start_[g + 1]; ++k) {

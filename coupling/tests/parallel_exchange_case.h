@@ -32,6 +32,7 @@ struct ExchangeCase {
       p.x = Eigen::Vector3d(ux(rng), uy(rng), uz(rng));
       if (i % 7 == 0) p.x.x() = x[6] + (i % 2 ? 1 : -1) * 2e-5;  // straddles the split plane
       p.radius = ur(rng);
+      p.id = i + 1;
       particles.push_back(p);
       amounts.push_back(make_amounts(1e-9 * (i + 1), 3e-4 * (i + 2), Eigen::Vector3d(1e-9 * i, -2e-9, 5e-10 * (i % 3))));
     }

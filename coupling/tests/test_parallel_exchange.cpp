@@ -126,7 +126,7 @@ TEST_P(ParallelExchangeSerial, HeatAndImpulseComeFromTheCellsByCapacityAndMass)
   const double Q = 2.5e-6;
   const Eigen::Vector3d I(3e-9, -1e-9, 2e-9);
   std::vector<Amounts> cells(std::size_t(mesh.n_cells()), Amounts{});
-  ex.deposit_taken({Q}, {I}, f, cells);
+  ex.deposit_taken({0}, {Q}, {I}, f, cells);
   double taken = 0.0, from_gas = 0.0, impulse_x = 0.0;
   for (long c = 0; c < mesh.n_cells(); ++c) {
     taken -= cells[std::size_t(c)][kEnthalpy];
@@ -147,7 +147,7 @@ TEST_P(ParallelExchangeSerial, HeatAndImpulseComeFromTheCellsByCapacityAndMass)
     EXPECT_NEAR(-cells[std::size_t(cw.cell)][kEnthalpy] / (c * cw.weight), Q / cap, 1e-12 * Q / cap);
     EXPECT_NEAR(-cells[std::size_t(cw.cell)][kMomY] / (r * cw.weight), I.y() / mass, 1e-12 * std::abs(I.y()) / mass);
   }
-  EXPECT_THROW(ex.deposit_taken({}, {}, f, cells), std::invalid_argument);
+  EXPECT_THROW(ex.deposit_taken({0}, {}, {}, f, cells), std::invalid_argument);
 }
 
 INSTANTIATE_TEST_SUITE_P(Models, ParallelExchangeSerial,

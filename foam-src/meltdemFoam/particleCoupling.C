@@ -124,7 +124,8 @@ Foam::meltdem::particleCoupling::particleCoupling
     boundsSet_(false),
     heated_(false),
     laser_(nullptr),
-    haveLocated_(false)
+    haveLocated_(false),
+    startHaveLocated_(false)
 {
     if (!meltdemDict.found("particles") || !meltdemDict.isDict("particles"))
     {
@@ -210,6 +211,7 @@ Foam::meltdem::particleCoupling::particleCoupling
     lammps_->insertion_store(drawnBefore_, pendingNow);
 
     exchange_.reset(new mc::ParallelExchange(distMesh_, model_, comm_));
+    startExchange_.reset(new mc::ParallelExchange(distMesh_, model_, comm_));
     ledger_.reset(new mc::ConservationLedger(comm_));
     const fileName dir(mesh.time().globalPath()/"postProcessing"/"particleLedger");
     if (Pstream::master()) mkDir(dir);
@@ -235,6 +237,7 @@ Foam::meltdem::particleCoupling::~particleCoupling()
 {
     lammps_.reset();
     exchange_.reset();
+    startExchange_.reset();
     ledger_.reset();
     MPI_Comm_free(&comm_);
     if (ownMpi_) MPI_Finalize();
@@ -516,12 +519,18 @@ void Foam::meltdem::particleCoupling::advance(Time& runTime, const fluidFields& 
     }
 
     // 3./4. where each particle is now: inside -> deposit, outside -> outflow
+    // keep the start-of-step location (for what the particles took), locate the end
+    std::swap(exchange_, startExchange_);
+    std::swap(located_, startLocated_);
+    std::swap(haveLocated_, startHaveLocated_);
     relocate(shapesOf(records));
     inside_.clear();
     lost_.clear();
-    // the melt (mass, its enthalpy and momentum) goes by the volume weights, the heat and
-    // the impulse the particle took come from the cells by capacity and mass weights
+    // the melt (mass, its enthalpy and momentum) goes by the volume weights at the end of the
+    // step, where it is; the heat and impulse the particles took come from the cells they
+    // sampled at its start, by capacity and mass weights
     std::vector<mc::Amounts> amounts;
+    std::vector<std::int64_t> takers;
     std::vector<double> heat;
     std::vector<Eigen::Vector3d> impulse;
     std::vector<std::int64_t> leaving;
@@ -532,6 +541,7 @@ void Foam::meltdem::particleCoupling::advance(Time& runTime, const fluidFields& 
         {
             inside_.push_back(r);
             amounts.push_back(mc::make_amounts(r.mass_out, r.enthalpy_out, r.momentum_out));
+            takers.push_back(r.id);
             heat.push_back(r.heat_absorbed);
             impulse.push_back(r.impulse_from_fluid);
         }
@@ -539,14 +549,12 @@ void Foam::meltdem::particleCoupling::advance(Time& runTime, const fluidFields& 
         {
             lost_.push_back(r);
             amounts.push_back(mc::Amounts{});
-            heat.push_back(0);
-            impulse.push_back(Eigen::Vector3d::Zero());
             if (r.mass > 0) leaving.push_back(r.id);
         }
     }
     std::vector<mc::Amounts> deposited(std::size_t(nCells), mc::Amounts{});
     exchange_->deposit(amounts, deposited);
-    exchange_->deposit_taken(heat, impulse, cells, deposited);
+    startExchange_->deposit_taken(takers, heat, impulse, cells, deposited);
 
     const scalarField& V = mesh_.V();
     forAll(V, celli)

@@ -76,16 +76,20 @@ class ParallelExchange {
   // rank: cell_amounts has one entry per local cell. Amounts of particles outside the
   // mesh are not deposited (the caller books them as outflow).
   void deposit(const std::vector<Amounts> &local_amounts, std::vector<Amounts> &cell_amounts) const;
-  // Collective. Takes what each local particle took from the fluid out of the cells: its
+  // Collective. Takes what each particle took from the fluid out of the cells: its
   // heat (J; negative: gave) from the enthalpy with particle i's share of cell c
   // w_ic rho_c cp_c / sum_c' w_ic' rho_c' cp_c', its drag and buoyancy impulse (kg m/s)
   // from the momentum with the share w_ic rho_c / sum_c' w_ic' rho_c' (volume weights where
   // the sums are zero): the weights its fluid temperature and velocity were sampled with,
   // so every cell it covers changes temperature and velocity alike, and a gas cell beside
   // melt (1e-5 of the heat capacity, 1e-2..1e-4 of the mass) gives almost nothing. Sums to
-  // what was taken exactly; particles outside the mesh give nothing.
-  void deposit_taken(const std::vector<double> &local_heat, const std::vector<Eigen::Vector3d> &local_impulse,
-                     const CellFluidFields &fields, std::vector<Amounts> &cell_amounts) const;
+  // what was taken exactly; particles outside the mesh give nothing. The particles are named
+  // by id (any rank may report any located particle: call it with the location the fluid was
+  // sampled at, and the particles' records after they moved); located particles no rank
+  // reports took nothing.
+  void deposit_taken(const std::vector<std::int64_t> &ids, const std::vector<double> &heat,
+                     const std::vector<Eigen::Vector3d> &impulse, const CellFluidFields &fields,
+                     std::vector<Amounts> &cell_amounts) const;
 
   // weights of global particle g over this rank's cells (for tests and diagnostics)
   void local_weights(std::int64_t g, std::vector<CellWeight> &out) const;
