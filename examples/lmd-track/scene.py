@@ -60,6 +60,7 @@ METAL = dict(rho=7900.0, mu=6.0e-3, cp=600.0, k=25.0, L=2.6e5, Tsolidus=1670.0, 
 T_MELT_PARTICLE = 1700.0          # in [Tsolidus, Tliquidus] (checked by the coupling)
 RHO_POWDER = 8190.0               # Inconel 718
 DUMMY_ID = 1000000
+DUMMY_D = 1e-5
 ARGON = dict(rho=1.6, mu=2.2e-5, cp=520.0, k=0.018)
 T0 = 300.0
 G = 9.81
@@ -240,7 +241,7 @@ def write_lammps(case, g, a):
 
 Atoms # sphere
 
-{DUMMY_ID} 1 1e-05 {RHO_POWDER!r} {dummy[0]!r} {dummy[1]!r} {dummy[2]!r}
+{DUMMY_ID} 1 {DUMMY_D!r} {RHO_POWDER!r} {dummy[0]!r} {dummy[1]!r} {dummy[2]!r}
 """)
     lines = [f"""# LMD powder stream (thesis 4.1, table 4.1), half model: written by examples/lmd-track/scene.py
 units           si
@@ -292,10 +293,11 @@ variable        mins equal {mins}
 variable        mpend equal {mpend}
 variable        mmelt equal f_melt[1]
 variable        np equal atoms
-fix             feedlog all ave/time {every} 1 {every} v_t v_np v_nins v_mins v_mpend v_mmelt file feed.dat
+fix             feedlog all ave/time {every} 1 {every} v_t v_np v_nins v_mins v_mpend v_mmelt file feed.dat format %.15g
 dump            grains all custom {every * 20} dump.grains id x y z vx vy vz diameter f_melt[1]
 dump_modify     grains sort id
 thermo_style    custom step time atoms v_nins v_mins v_mmelt
+thermo_modify   format float %.15g
 thermo          {every * 20}
 """)
     with open(os.path.join(case, "in.particles"), "w") as f:
@@ -496,7 +498,9 @@ def analyse(case, quiet=False):
         dep_c = np.cumsum(led["mass_exchange"])
         lost_c = np.cumsum(led["mass_lost"])
         melted, lost = float(dep_c[-1]), float(lost_c[-1])
-        aloft, pending = float(led["mass_particles"][-1]), float(led["mass_pending"][-1])
+        # the held dummy grain is no powder: not fed, never deposited or lost
+        dummy = RHO_POWDER * math.pi / 6 * DUMMY_D ** 3
+        aloft, pending = float(led["mass_particles"][-1]) - dummy, float(led["mass_pending"][-1])
         eff = melted / (melted + lost) if melted + lost > 0 else float("nan")
         # the same over the second half of the run (closer to the steady pool)
         j = int(np.searchsorted(led["time"], 0.5 * float(led["time"][-1])))
@@ -530,7 +534,7 @@ def analyse(case, quiet=False):
             "deposition_efficiency_second_half_pct": 100.0 * eff2,
             "powder_fed_kg": fed, "powder_deposited_kg": melted, "powder_lost_kg": lost,
             "powder_aloft_kg": aloft, "powder_pending_kg": pending, "continuum_metal_gain_kg": cont1 - cont0,
-            "powder_melted_lammps_kg": float(feed[-1, 6]),
+            "powder_melted_lammps_kg": lammps_molten(case),
             "particles_inserted": int(feed[-1, 3]), "fluid_steps": int(len(led)),
         })
         for c in ("mass", "enthalpy"):
@@ -590,6 +594,22 @@ def crossing(s, f, level):
         if f[i] < level:
             return float(s[i - 1] + (f[i - 1] - level) / (f[i - 1] - f[i]) * (s[i] - s[i - 1]))
     return float(s[-1])
+
+
+def lammps_molten(case):
+    """Molten mass fix powder/melt reports (v_mmelt) on the last thermo line of log.lammps, i.e.
+    at the end of the last coupled step."""
+    val, cols = float("nan"), None
+    for line in open(os.path.join(case, "log.lammps")):
+        w = line.split()
+        if w[:2] == ["Step", "Time"]:
+            cols = w
+        elif cols and len(w) == len(cols) and w[0].isdigit():
+            try:
+                val = float(w[cols.index("v_mmelt")])
+            except ValueError:
+                pass
+    return val
 
 
 def ledger(case):
