@@ -293,7 +293,7 @@ variable        mins equal {mins}
 variable        mpend equal {mpend}
 variable        mmelt equal f_melt[1]
 variable        np equal atoms
-fix             feedlog all ave/time {every} 1 {every} v_t v_np v_nins v_mins v_mpend v_mmelt file feed.dat format %.15g
+fix             feedlog all ave/time {every} 1 {every} v_t v_np v_nins v_mins v_mpend v_mmelt file feed.dat format " %.15g"
 dump            grains all custom {every * 20} dump.grains id x y z vx vy vz diameter f_melt[1]
 dump_modify     grains sort id
 thermo_style    custom step time atoms v_nins v_mins v_mmelt
