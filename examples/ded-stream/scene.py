@@ -128,13 +128,7 @@ def build(a):
                     max_dt=max_dt)
     fc.fv_schemes(case)
     fc.fv_solution(case, n_correctors=3)
-    sol = os.path.join(case, "system", "fvSolution")
-    txt = open(sol).read()
-    # the metal mass and enthalpy balances are only as exact as these solves
-    txt = txt.replace("tolerance 1e-10; relTol 0;\n    }", "tolerance 1e-14; relTol 0;\n    }", 1)
-    txt = txt.replace('"T.*" { solver PBiCGStab; preconditioner DILU; tolerance 1e-10; relTol 0; }',
-                      '"T.*" { solver PBiCGStab; preconditioner DILU; tolerance 1e-14; relTol 0; }')
-    open(sol, "w").write(txt)
+    cc.exact_solves(case, T=1e-14, relaxation=True)   # the metal mass and enthalpy balances
     t_off = f"    tOff {T_OFF!r};\n" if a.switch_off else ""
     extra = f"""metal
 {{

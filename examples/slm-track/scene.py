@@ -252,16 +252,7 @@ def build(case, variant, cell=None, bed=None, track=None, distribution="overlap"
                     max_dt=dt_cap)
     fc.fv_schemes(case)
     fc.fv_solution(case, n_correctors=3)
-    sol = os.path.join(case, "system", "fvSolution")
-    txt = open(sol).read()
-    # the ledger balances are only as exact as the linear solves (as tests/coupling)
-    txt = txt.replace("tolerance 1e-10; relTol 0;\n    }", "tolerance 1e-14; relTol 0;\n    }", 1)
-    txt = txt.replace("p_rgh { solver PCG; preconditioner DIC; tolerance 1e-9; relTol 0.01; }",
-                      "p_rgh { solver PCG; preconditioner DIC; tolerance 1e-12; relTol 0; }")
-    txt = txt.replace('"T.*" { solver PBiCGStab; preconditioner DILU; tolerance 1e-10; relTol 0; }',
-                      '"T.*" { solver PBiCGStab; preconditioner DILU; tolerance 1e-14; relTol 0; }')
-    txt = txt.replace('relaxationFactors { equations { ".*" 1; } }', "")
-    open(sol, "w").write(txt)
+    cc.exact_solves(case, p_rgh=1e-12, T=1e-14)   # the ledger balances (as tests/coupling)
     laser = f"""laser
 {{
     power        {POWER!r};

@@ -93,6 +93,28 @@ def cell_centres_y(n, lo, hi):
     return np.broadcast_to(yc[None, :, None], (n[2], n[1], n[0])).ravel()
 
 
+def exact_solves(case, alpha=1e-14, p_rgh=None, U=None, T=None, relaxation=False):
+    """Tighten the linear solves of fc.fv_solution's system/fvSolution: the ledger's balances are
+    only as exact as these solves (alpha to 1e-14 for the metal mass; p_rgh, U, T to the given
+    tolerance with relTol 0, None keeps fv_solution's). Drops relaxationFactors (relax() breaks
+    exact conservation) unless relaxation."""
+    sol = os.path.join(case, "system", "fvSolution")
+    txt = open(sol).read()
+    txt = txt.replace("tolerance 1e-10; relTol 0;\n    }", f"tolerance {alpha!r}; relTol 0;\n    }}", 1)
+    if p_rgh is not None:
+        txt = txt.replace("p_rgh { solver PCG; preconditioner DIC; tolerance 1e-9; relTol 0.01; }",
+                          f"p_rgh {{ solver PCG; preconditioner DIC; tolerance {p_rgh!r}; relTol 0; }}")
+    if U is not None:
+        txt = txt.replace('"U.*" { solver smoothSolver; smoother symGaussSeidel; tolerance 1e-9; relTol 0; }',
+                          f'"U.*" {{ solver smoothSolver; smoother symGaussSeidel; tolerance {U!r}; relTol 0; }}')
+    if T is not None:
+        txt = txt.replace('"T.*" { solver PBiCGStab; preconditioner DILU; tolerance 1e-10; relTol 0; }',
+                          f'"T.*" {{ solver PBiCGStab; preconditioner DILU; tolerance {T!r}; relTol 0; }}')
+    if not relaxation:
+        txt = txt.replace('relaxationFactors { equations { ".*" 1; } }', "")
+    open(sol, "w").write(txt)
+
+
 def channel_case(case, model, particle, channel=None, gas=None, t_end=8.5e-3, fluid_dt=1e-5,
                  dem_dt=1e-6, max_co=0.5, metal_k=30.0, extra_lammps="", g=(0.0, 0.0, 0.0),
                  floor=None, melt_keywords="", physics=None, extra_properties="", particles_script=None):
@@ -135,17 +157,7 @@ def channel_case(case, model, particle, channel=None, gas=None, t_end=8.5e-3, fl
                     max_dt=fluid_dt)
     fc.fv_schemes(case)
     fc.fv_solution(case, n_correctors=3)
-    sol = os.path.join(case, "system", "fvSolution")
-    txt = open(sol).read()
-    txt = txt.replace("tolerance 1e-10; relTol 0;\n    }", "tolerance 1e-14; relTol 0;\n    }", 1)
-    txt = txt.replace("p_rgh { solver PCG; preconditioner DIC; tolerance 1e-9; relTol 0.01; }",
-                      "p_rgh { solver PCG; preconditioner DIC; tolerance 1e-14; relTol 0; }")
-    txt = txt.replace('"U.*" { solver smoothSolver; smoother symGaussSeidel; tolerance 1e-9; relTol 0; }',
-                      '"U.*" { solver smoothSolver; smoother symGaussSeidel; tolerance 1e-15; relTol 0; }')
-    txt = txt.replace('"T.*" { solver PBiCGStab; preconditioner DILU; tolerance 1e-10; relTol 0; }',
-                      '"T.*" { solver PBiCGStab; preconditioner DILU; tolerance 1e-15; relTol 0; }')
-    txt = txt.replace('relaxationFactors { equations { ".*" 1; } }', "")
-    open(sol, "w").write(txt)
+    exact_solves(case, p_rgh=1e-14, U=1e-15, T=1e-15)
     fc.meltdem_properties(case, physics=dict(dict(energy="on", surfaceTension="off", particles="on"),
                                              **(physics or {})), extra=extra_properties + f"""
 metal {{ cp {p["cp"]!r}; k {metal_k!r}; L {p["L"]!r}; Tsolidus {p["Tm"] - 1!r}; Tliquidus {p["Tm"]!r}; }}
