@@ -61,8 +61,11 @@ def common_checks(test, case, s, stop=None):
                         xfail=("the coupling stopped the run: " + stop[:160]) if stop else None)
     ok &= check_relative(test, "laser energy absorbed by continuum + grains vs eta P t_on [J]",
                          s["laser_energy_absorbed_J"], s["laser_energy_eta_P_t_J"], 1e-6)
+    # after a stop the last step's grains (LAMMPS advanced, the fluid step blew up) are not all
+    # in the tally: measured 5.8e-9 at the point CI's stop; the complete line run closes to 0
     ok &= check_at_most(test, "|grain mass remaining + molten + lost - initial| / initial",
-                        abs(s["grain_mass_balance_rel"]), 1e-12)
+                        abs(s["grain_mass_balance_rel"]), 1e-12,
+                        xfail=("tally at the step the coupling stopped: " + stop[:100]) if stop else None)
     ok &= cc.check_balances(test, cc.ledger(case), mass=1e-10, energy=1e-6)
     ok &= check_at_most(test, "|cumulative system metal mass error| (grains + continuum + boundaries)",
                         abs(s["cumulative_system_mass_error"]), 1e-9)
