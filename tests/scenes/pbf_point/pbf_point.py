@@ -71,7 +71,7 @@ def common_checks(test, case, s, stop=None):
                         abs(s["cumulative_system_mass_error"]), 1e-9)
     ok &= check_at_least(test, "lowest temperature [K] (no undershoot below the 500 K start)",
                          s["T_min_K"], 450.0, xfail=xf)
-    ok &= check_at_least(test, "grains molten [kg] (the beam melts powder)", s["grain_mass_molten_kg"], 1e-10, xfail=xf)
+    ok &= check_at_least(test, "grains molten [kg] (the beam melts powder)", s["grain_mass_molten_kg"], 1e-10)
     ok &= check_at_least(test, "melt pool depth below the substrate surface [um] (substrate melts)",
                          s["melt_pool_depth_max_um"], 10.0, xfail=xf)
     return ok
