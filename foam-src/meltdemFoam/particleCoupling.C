@@ -361,14 +361,16 @@ void Foam::meltdem::particleCoupling::advance(Time& runTime, const fluidFields& 
     if (thermal_)
     {
         // the range no exchange may leave, and the worst cell's C/G for the message
-        std::vector<mc::SampledFluid> mine;
-        exchange_->sample(cells, mine);
+        const std::size_t offset = exchange_->local_offset();
         std::vector<mc::Amounts> g(start.size(), mc::Amounts{});
         scalar Tplo = GREAT, Tphi = -GREAT;
         for (std::size_t i = 0; i < start.size(); ++i)
         {
             if (!exchange_->inside(i)) continue;
-            g[i][0] = mc::particle_conductance(mine[i].fluid, 2*start[i].radius, start[i].v.data());
+            g[i][0] = mc::particle_conductance
+            (
+                sampled[offset + i].fluid, 2*start[i].radius, start[i].v.data()
+            );
             Tplo = min(Tplo, start[i].T);
             Tphi = max(Tphi, start[i].T);
         }
@@ -491,26 +493,21 @@ void Foam::meltdem::particleCoupling::advance(Time& runTime, const fluidFields& 
             << exit(FatalError);
     }
 
-    // a particle that melted away within the step spreads its melt with the size it had
-    // at the start of the step, not its last solid size (one cell in fine meshes)
-    {
-        std::unordered_map<std::int64_t, double> startRadius;
-        for (const auto& r : start) startRadius[r.id] = r.radius;
-        for (auto& r : records)
-        {
-            const auto it = startRadius.find(r.id);
-            if (r.mass == 0 && it != startRadius.end()) r.radius = max(r.radius, it->second);
-        }
-    }
-
-    // a particle that melted away within the step stopped absorbing its light: the beam
-    // the shadow held back for the rest of the step heats its melt (the continuum gets
-    // it with the melt's enthalpy), so continuum + particles still absorb eta P
+    // a particle that melted away within the step (mass 0): its melt is spread with the
+    // size it had at the start of the step, not its last solid size (one cell in fine
+    // meshes); and it stopped absorbing its light: the beam the shadow held back for the
+    // rest of the step heats its melt (the continuum gets it with the melt's enthalpy), so
+    // continuum + particles still absorb eta P
+    std::unordered_map<std::int64_t, double> startRadius;
+    for (const auto& r : start) startRadius[r.id] = r.radius;
     for (auto& r : records)
     {
-        const auto it = lightOf.find(r.id);
-        if (r.mass > 0 || it == lightOf.end()) continue;
-        const double rest = it->second*elapsed - r.external_heat;
+        if (r.mass > 0) continue;
+        const auto radius = startRadius.find(r.id);
+        if (radius != startRadius.end()) r.radius = max(r.radius, radius->second);
+        const auto lit = lightOf.find(r.id);
+        if (lit == lightOf.end()) continue;
+        const double rest = lit->second*elapsed - r.external_heat;
         if (rest > 0)
         {
             r.external_heat += rest;
@@ -779,15 +776,11 @@ void Foam::meltdem::particleCoupling::shadeParticles
     shadow_ = mc::shade_particles(comm_, beam, local);
 
     // by global index (rank order, as the exchange numbers them)
-    long n = long(start.size()), offset = 0;
-    MPI_Exscan(&n, &offset, 1, MPI_LONG, MPI_SUM, comm_);
-    int rank = 0;
-    MPI_Comm_rank(comm_, &rank);
-    if (rank == 0) offset = 0;
+    const std::size_t offset = exchange_->local_offset();
     absorbed.assign(std::size_t(exchange_->global_particles()), 0.0);
     for (std::size_t k = 0; k < solid.size(); ++k)
     {
-        absorbed[std::size_t(offset) + solid[k]] = shadow_.absorbed[k];
+        absorbed[offset + solid[k]] = shadow_.absorbed[k];
     }
     if (!absorbed.empty())
     {

@@ -52,6 +52,8 @@ class ParallelExchange {
   void locate(const std::vector<ParticleShape> &local_particles);
 
   std::int64_t global_particles() const { return std::int64_t(all_.size()); }
+  // global index of this rank's first located particle (local i is global local_offset() + i)
+  std::size_t local_offset() const { return offset_; }
   // whether local particle i lies in the mesh (its centre is in a cell; for overlap also
   // some of its volume); one outside exchanges nothing and is booked as outflow
   bool inside(std::size_t local_index) const { return inside_[offset_ + local_index] != 0; }
