@@ -4,35 +4,44 @@
 
 namespace meltdem::coupling {
 
+void add_cell_to_sample(const CellFluidFields &f, long c, double w, double *q)
+{
+  q[0] += w * f.T[c];
+  q[1] += w * f.k[c];
+  q[2] += w * f.rho[c];
+  q[3] += w * f.mu[c];
+  q[4] += w * f.cp[c];
+  for (int d = 0; d < 3; ++d) q[5 + d] += w * f.U[3 * c + d];
+  if (f.alpha_metal) q[8] += w * f.alpha_metal[c];
+  if (f.liquid_fraction) q[9] += w * f.liquid_fraction[c];
+  q[10] += w * f.rho[c] * f.cp[c];
+  q[11] += w * f.rho[c] * f.cp[c] * f.T[c];
+  q[12] += w * f.rho[c];
+  for (int d = 0; d < 3; ++d) q[13 + d] += w * f.rho[c] * f.U[3 * c + d];
+  if (f.volume) q[16] += w * f.rho[c] * f.volume[c];
+}
+
+SampledFluid finish_sample(const double *q)
+{
+  SampledFluid s;
+  s.fluid.T = q[0], s.fluid.k = q[1], s.fluid.rho = q[2], s.fluid.mu = q[3], s.fluid.cp = q[4];
+  for (int d = 0; d < 3; ++d) s.fluid.U[d] = q[5 + d];
+  s.alpha_metal = q[8], s.liquid_fraction = q[9];
+  if (q[10] > 0.0) s.fluid.T = q[11] / q[10];  // heat-capacity weighted
+  if (q[12] > 0.0)
+    for (int d = 0; d < 3; ++d) s.fluid.U[d] = q[13 + d] / q[12];  // mass weighted
+  s.fluid.mass = q[16];
+  return s;
+}
+
 SampledFluid sample_fluid(const std::vector<CellWeight> &weights, const CellFluidFields &f)
 {
   if (weights.empty()) throw std::invalid_argument("sample_fluid: no cell weights");
   if (!f.T || !f.k || !f.rho || !f.mu || !f.cp || !f.U)
     throw std::invalid_argument("sample_fluid: T, k, rho, mu, cp and U are required");
-  SampledFluid s;
-  FluidState &q = s.fluid;
-  double capacity = 0.0, heat = 0.0, mass = 0.0, momentum[3] = {0.0, 0.0, 0.0};
-  for (const CellWeight &cw : weights) {
-    const long c = cw.cell;
-    const double w = cw.weight;
-    q.T += w * f.T[c];
-    capacity += w * f.rho[c] * f.cp[c];
-    heat += w * f.rho[c] * f.cp[c] * f.T[c];
-    mass += w * f.rho[c];
-    if (f.volume) q.mass += w * f.rho[c] * f.volume[c];
-    for (int d = 0; d < 3; ++d) momentum[d] += w * f.rho[c] * f.U[3 * c + d];
-    q.k += w * f.k[c];
-    q.rho += w * f.rho[c];
-    q.mu += w * f.mu[c];
-    q.cp += w * f.cp[c];
-    for (int d = 0; d < 3; ++d) q.U[d] += w * f.U[3 * c + d];
-    if (f.alpha_metal) s.alpha_metal += w * f.alpha_metal[c];
-    if (f.liquid_fraction) s.liquid_fraction += w * f.liquid_fraction[c];
-  }
-  if (capacity > 0.0) q.T = heat / capacity;
-  if (mass > 0.0)
-    for (int d = 0; d < 3; ++d) q.U[d] = momentum[d] / mass;
-  return s;
+  double sums[kSampleSums] = {};
+  for (const CellWeight &cw : weights) add_cell_to_sample(f, cw.cell, cw.weight, sums);
+  return finish_sample(sums);
 }
 
 bool MeshFluidProvider::fluid_state(int index, const double x[3], FluidState &out) const

@@ -179,43 +179,16 @@ void ParallelExchange::sample_global(const CellFluidFields &f, std::vector<Sampl
 {
   if (!f.T || !f.k || !f.rho || !f.mu || !f.cp || !f.U)
     throw std::invalid_argument("particle exchange: T, k, rho, mu, cp and U are required to sample the fluid");
-  constexpr int kFields = 17;
+  // sample_fluid's sums over this rank's cells, summed over the ranks, then finished
   const std::size_t n = all_.size();
-  std::vector<double> partial(kFields * n, 0.0);
-  for (std::size_t g = 0; g < n; ++g) {
-    double *q = &partial[kFields * g];
-    for (std::size_t k = start_[g]; k < start_[g + 1]; ++k) {
-      const long c = cells_[k];
-      const double w = weights_[k];
-      q[0] += w * f.T[c];
-      q[1] += w * f.k[c];
-      q[2] += w * f.rho[c];
-      q[3] += w * f.mu[c];
-      q[4] += w * f.cp[c];
-      for (int d = 0; d < 3; ++d) q[5 + d] += w * f.U[3 * c + d];
-      if (f.alpha_metal) q[8] += w * f.alpha_metal[c];
-      if (f.liquid_fraction) q[9] += w * f.liquid_fraction[c];
-      q[10] += w * f.rho[c] * f.cp[c];
-      q[11] += w * f.rho[c] * f.cp[c] * f.T[c];
-      q[12] += w * f.rho[c];
-      for (int d = 0; d < 3; ++d) q[13 + d] += w * f.rho[c] * f.U[3 * c + d];
-      if (f.volume) q[16] += w * f.rho[c] * f.volume[c];
-    }
-  }
-  if (n) MPI_Allreduce(MPI_IN_PLACE, partial.data(), int(kFields * n), MPI_DOUBLE, MPI_SUM, comm_);
+  std::vector<double> partial(kSampleSums * n, 0.0);
+  for (std::size_t g = 0; g < n; ++g)
+    for (std::size_t k = start_[g]; k < start_[g + 1]; ++k)
+      add_cell_to_sample(f, cells_[k], weights_[k], &partial[kSampleSums * g]);
+  if (n) MPI_Allreduce(MPI_IN_PLACE, partial.data(), int(kSampleSums * n), MPI_DOUBLE, MPI_SUM, comm_);
   out.assign(n, SampledFluid());
-  for (std::size_t g = 0; g < n; ++g) {
-    if (!inside_[g]) continue;
-    const double *q = &partial[kFields * g];
-    SampledFluid &s = out[g];
-    s.fluid.T = q[0], s.fluid.k = q[1], s.fluid.rho = q[2], s.fluid.mu = q[3], s.fluid.cp = q[4];
-    for (int d = 0; d < 3; ++d) s.fluid.U[d] = q[5 + d];
-    s.alpha_metal = q[8], s.liquid_fraction = q[9];
-    if (q[10] > 0.0) s.fluid.T = q[11] / q[10];  // heat-capacity weighted (fluid_sampling.h)
-    if (q[12] > 0.0)
-      for (int d = 0; d < 3; ++d) s.fluid.U[d] = q[13 + d] / q[12];  // mass weighted
-    s.fluid.mass = q[16];
-  }
+  for (std::size_t g = 0; g < n; ++g)
+    if (inside_[g]) out[g] = finish_sample(&partial[kSampleSums * g]);
 }
 
 void ParallelExchange::sample(const CellFluidFields &f, std::vector<SampledFluid> &local_out) const

@@ -41,6 +41,12 @@ struct SampledFluid {
 // Throws std::invalid_argument for empty weights or a missing required field.
 SampledFluid sample_fluid(const std::vector<CellWeight> &weights, const CellFluidFields &fields);
 
+// The weighted sums sample_fluid() forms, kept apart so that they can be summed over ranks
+// before they are finished (ParallelExchange::sample_global): add each cell, then finish.
+constexpr int kSampleSums = 17;
+void add_cell_to_sample(const CellFluidFields &fields, long cell, double weight, double *sums);
+SampledFluid finish_sample(const double *sums);
+
 // FluidStateProvider over a mesh: particle i (radius radii[i]) sees the fields averaged
 // with the weights of the chosen distribution model. Returns false for a particle whose
 // centre is outside the mesh (it exchanges nothing; the caller books it as outflow).
