@@ -51,6 +51,9 @@ import time
 
 import numpy as np
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from build_stamp import build_stamp, stamp_line  # noqa: E402
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 os.environ.setdefault("MELTDEM_SOURCE_DIR", ROOT)
@@ -240,17 +243,7 @@ def rel(a, b):
     return (a - b) / b
 
 
-def build_stamp():
-    """git commit of the sources and modification time of the solver used (a rebuild during the run shows)"""
-    head = subprocess.run(["git", "-C", ROOT, "rev-parse", "--short", "HEAD"], capture_output=True, text=True).stdout.strip()
-    dirty = subprocess.run(["git", "-C", ROOT, "status", "--porcelain", "--untracked-files=no", "coupling",
-                            "foam-src", "lammps-src"], capture_output=True, text=True).stdout.strip()
-    mtime = time.strftime("%Y-%m-%d %H:%M:%S UTC", time.gmtime(os.path.getmtime(os.path.join(args.bin, "meltdemFoam"))))
-    return (f"sources at the start {head}{' + uncommitted coupling changes' if dirty else ''}, "
-            f"meltdemFoam built {mtime}")
-
-
-STAMP = build_stamp()
+STAMP = build_stamp(ROOT, args.bin)
 cases = args.cases.split(",")
 results = {}
 if "thesis" in cases:
@@ -271,10 +264,7 @@ lines = ["# Coupling interval: DEM steps per fluid step, cost vs accuracy", "",
          "loaded-machine times (about +-20 %), compare the ratios within a column. The DEM step is fixed; "
          "N = `demStepsPerFluidStep`, fluid step = N DEM steps (the Courant limit is overridden, largest "
          "Courant number shown). Wall time = whole solver run, start-up (~0.7 s) included, fastest of "
-         f"{args.repeat} interleaved runs. Build: " + STAMP
-         + (" -- REBUILT DURING THE RUN (now: " + build_stamp() + "): mixed results"
-            if build_stamp().split("built")[1] != STAMP.split("built")[1] else "")
-         + ".", ""]
+         f"{args.repeat} interleaved runs. Build: " + stamp_line(ROOT, args.bin, STAMP) + ".", ""]
 summary = []
 if "thesis" in results:
     R = results["thesis"]

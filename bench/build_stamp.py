@@ -1,0 +1,23 @@
+"""Which sources and solver build a benchmark measured (the machines are shared: a rebuild
+during a long run would mix two builds in one table)."""
+import os
+import subprocess
+import time
+
+
+def build_stamp(root, bin_dir):
+    """git commit of the sources and modification time of the meltdemFoam used"""
+    head = subprocess.run(["git", "-C", root, "rev-parse", "--short", "HEAD"], capture_output=True, text=True).stdout.strip()
+    dirty = subprocess.run(["git", "-C", root, "status", "--porcelain", "--untracked-files=no", "coupling",
+                            "foam-src", "lammps-src"], capture_output=True, text=True).stdout.strip()
+    mtime = time.strftime("%Y-%m-%d %H:%M:%S UTC", time.gmtime(os.path.getmtime(os.path.join(bin_dir, "meltdemFoam"))))
+    return (f"sources at the start {head}{' + uncommitted coupling changes' if dirty else ''}, "
+            f"meltdemFoam built {mtime}")
+
+
+def stamp_line(root, bin_dir, at_start):
+    """at_start (the stamp taken when the run began), flagged if the solver was rebuilt since"""
+    now = build_stamp(root, bin_dir)
+    if now.split("built")[1] == at_start.split("built")[1]:
+        return at_start
+    return at_start + " -- REBUILT DURING THE RUN (now: " + now + "): mixed results"
