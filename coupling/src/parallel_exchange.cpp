@@ -14,6 +14,8 @@ namespace meltdem::coupling {
 
 namespace {
 
+double particle_volume(double radius) { return 4.0 / 3.0 * M_PI * radius * radius * radius; }
+
 // Gather `per` doubles per item from every rank, in rank order.
 void allgather_doubles(const std::vector<double> &local, int per, MPI_Comm comm, std::vector<double> &all,
                        std::vector<int> &counts, std::vector<int> &displs)
@@ -219,49 +221,80 @@ void ParallelExchange::deposit(const std::vector<Amounts> &local_amounts, std::v
 }
 
 void ParallelExchange::deposit_taken(const std::vector<std::int64_t> &ids, const std::vector<double> &heat,
-                                     const std::vector<Eigen::Vector3d> &impulse, const CellFluidFields &f,
+                                     const std::vector<Eigen::Vector3d> &impulse,
+                                     const std::vector<double> &particle_T, const CellFluidFields &f,
                                      std::vector<Amounts> &cell_amounts) const
 {
   const std::size_t nmine = ids.size();
-  if (heat.size() != nmine || impulse.size() != nmine)
-    throw std::invalid_argument("particle exchange: deposit_taken() needs one heat and impulse per particle id");
-  if (!f.rho || !f.cp) throw std::invalid_argument("particle exchange: deposit_taken() needs rho and cp");
+  if (heat.size() != nmine || impulse.size() != nmine || particle_T.size() != nmine)
+    throw std::invalid_argument(
+        "particle exchange: deposit_taken() needs one heat, impulse and temperature per particle id");
+  if (!f.rho || !f.cp || !f.T) throw std::invalid_argument("particle exchange: deposit_taken() needs T, rho and cp");
   // any rank may report any located particle (it may have moved to another DEM rank since
-  // it was located): gather (id, heat, impulse) and find each located particle's entry
+  // it was located): gather (id, heat, impulse, T) and find each located particle's entry
+  constexpr int kIn = 6, kOut = 5;
   std::vector<double> mine;
-  mine.reserve(5 * nmine);
+  mine.reserve(kIn * nmine);
   for (std::size_t i = 0; i < nmine; ++i)
-    mine.insert(mine.end(), {double(ids[i]), heat[i], impulse[i].x(), impulse[i].y(), impulse[i].z()});
+    mine.insert(mine.end(), {double(ids[i]), heat[i], impulse[i].x(), impulse[i].y(), impulse[i].z(), particle_T[i]});
   std::vector<double> gathered;
   std::vector<int> counts, displs;
-  allgather_doubles(mine, 5, comm_, gathered, counts, displs);
+  allgather_doubles(mine, kIn, comm_, gathered, counts, displs);
   std::unordered_map<std::int64_t, std::size_t> entry;
-  for (std::size_t k = 0; 5 * k < gathered.size(); ++k) entry[std::int64_t(gathered[5 * k])] = k;
+  for (std::size_t k = 0; kIn * k < gathered.size(); ++k) entry[std::int64_t(gathered[kIn * k])] = k;
   const std::size_t n = all_.size();
-  std::vector<double> all(4 * n, 0.0);
+  std::vector<double> all(kOut * n, 0.0);
   for (std::size_t g = 0; g < n; ++g) {
     const auto it = entry.find(all_[g].id);
     if (it == entry.end()) continue;
-    for (int q = 0; q < 4; ++q) all[4 * g + q] = gathered[5 * it->second + 1 + q];
+    for (int q = 0; q < kOut; ++q) all[kOut * g + q] = gathered[kIn * it->second + 1 + q];
   }
-  // each particle's capacity and mass sums over every rank's cells, then the shares
-  std::vector<double> sums(2 * n, 0.0);
+  // the heat a cell can give particle g before it reaches the particle's temperature:
+  // g's claim on the cell's capacity (its part of the particle volume the cell holds; all
+  // of it for a particle alone in the cell) times the cell's temperature difference to the
+  // particle, in the direction g took heat
+  std::vector<double> claimed;  // per cell: particle volume it holds, summed over particles
+  if (f.volume) {
+    claimed.assign(cell_amounts.size(), 0.0);
+    for (std::size_t g = 0; g < n; ++g)
+      for (std::size_t k = start_[g]; k < start_[g + 1]; ++k)
+        claimed.at(std::size_t(cells_[k])) += weights_[k] * particle_volume(all_[g].radius);
+  }
+  const auto available = [&](std::size_t g, std::size_t k) {
+    if (!f.volume) return 0.0;
+    const long c = cells_[k];
+    const double held = weights_[k] * particle_volume(all_[g].radius);
+    const double capacity = held / claimed[std::size_t(c)] * f.rho[c] * f.cp[c] * f.volume[c];
+    const double *a = &all[kOut * g];
+    const double dT = a[0] >= 0.0 ? f.T[c] - a[4] : a[4] - f.T[c];
+    return capacity * std::max(dT, 0.0);
+  };
+  // per particle over every rank's cells: capacity sum w rho cp, mass sum w rho, available heat
+  std::vector<double> sums(3 * n, 0.0);
   for (std::size_t g = 0; g < n; ++g)
     for (std::size_t k = start_[g]; k < start_[g + 1]; ++k) {
       const long c = cells_[k];
-      sums[2 * g] += weights_[k] * f.rho[c] * f.cp[c];
-      sums[2 * g + 1] += weights_[k] * f.rho[c];
+      sums[3 * g] += weights_[k] * f.rho[c] * f.cp[c];
+      sums[3 * g + 1] += weights_[k] * f.rho[c];
+      sums[3 * g + 2] += available(g, k);
     }
-  if (n) MPI_Allreduce(MPI_IN_PLACE, sums.data(), int(2 * n), MPI_DOUBLE, MPI_SUM, comm_);
+  if (n) MPI_Allreduce(MPI_IN_PLACE, sums.data(), int(3 * n), MPI_DOUBLE, MPI_SUM, comm_);
   for (std::size_t g = 0; g < n; ++g) {
     if (!inside_[g]) continue;
-    const double *a = &all[4 * g];
+    const double *a = &all[kOut * g];
+    const double capacity = sums[3 * g], mass = sums[3 * g + 1], room = sums[3 * g + 2];
+    const double Q = std::abs(a[0]);
     for (std::size_t k = start_[g]; k < start_[g + 1]; ++k) {
       const long c = cells_[k];
-      const double heat_share = sums[2 * g] > 0.0 ? weights_[k] * f.rho[c] * f.cp[c] / sums[2 * g] : weights_[k];
-      const double mass_share = sums[2 * g + 1] > 0.0 ? weights_[k] * f.rho[c] / sums[2 * g + 1] : weights_[k];
+      const double by_capacity = capacity > 0.0 ? weights_[k] * f.rho[c] * f.cp[c] / capacity : weights_[k];
+      // each cell by the heat it has above (below) the particle's temperature, so each moves
+      // the same fraction of the way towards it and none passes it; what is beyond all cells'
+      // room (the fluid step is too long: the bound guard stops the run) by capacity
+      const double given = Q <= room ? (room > 0.0 ? Q * available(g, k) / room : 0.0)
+                                     : available(g, k) + (Q - room) * by_capacity;
+      const double mass_share = mass > 0.0 ? weights_[k] * f.rho[c] / mass : weights_[k];
       Amounts &cell = cell_amounts.at(std::size_t(c));
-      cell[kEnthalpy] -= heat_share * a[0];
+      cell[kEnthalpy] -= std::copysign(given, a[0]);
       for (int d = 0; d < 3; ++d) cell[kMomX + d] -= mass_share * a[1 + d];
     }
   }

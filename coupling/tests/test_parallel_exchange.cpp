@@ -85,10 +85,11 @@ TEST_P(ParallelExchangeSerial, SamplingEqualsSampleFluid)
 }
 
 // A particle half in melt, half in gas (overlap, 4 cells across the interface): it sees the
-// melt's temperature and velocity (capacity- and mass-weighted), and the heat and impulse it
-// takes come from the cells by capacity and by mass, so the gas cells (1e-5 of the capacity,
-// 1e-3 of the mass) give that fraction of their share by volume, every covered cell the same
-// temperature and velocity change per covered volume, and the sums are exact.
+// melt's temperature and velocity (capacity- and mass-weighted). Without cell volumes the
+// heat and impulse it takes come from the cells by capacity and by mass, so the gas cells
+// (1e-5 of the capacity, 1e-3 of the mass) give that fraction of their share by volume,
+// every covered cell the same temperature and velocity change per covered volume, and the
+// sums are exact.
 TEST_P(ParallelExchangeSerial, HeatAndImpulseComeFromTheCellsByCapacityAndMass)
 {
   const auto mesh = CartesianGridMesh::uniform(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(8, 8, 8), 8, 8, 8);
@@ -126,7 +127,7 @@ TEST_P(ParallelExchangeSerial, HeatAndImpulseComeFromTheCellsByCapacityAndMass)
   const double Q = 2.5e-6;
   const Eigen::Vector3d I(3e-9, -1e-9, 2e-9);
   std::vector<Amounts> cells(std::size_t(mesh.n_cells()), Amounts{});
-  ex.deposit_taken({0}, {Q}, {I}, f, cells);
+  ex.deposit_taken({0}, {Q}, {I}, {1200.0}, f, cells);
   double taken = 0.0, from_gas = 0.0, impulse_x = 0.0;
   for (long c = 0; c < mesh.n_cells(); ++c) {
     taken -= cells[std::size_t(c)][kEnthalpy];
@@ -147,7 +148,75 @@ TEST_P(ParallelExchangeSerial, HeatAndImpulseComeFromTheCellsByCapacityAndMass)
     EXPECT_NEAR(-cells[std::size_t(cw.cell)][kEnthalpy] / (c * cw.weight), Q / cap, 1e-12 * Q / cap);
     EXPECT_NEAR(-cells[std::size_t(cw.cell)][kMomY] / (r * cw.weight), I.y() / mass, 1e-12 * std::abs(I.y()) / mass);
   }
-  EXPECT_THROW(ex.deposit_taken({0}, {}, {}, f, cells), std::invalid_argument);
+  EXPECT_THROW(ex.deposit_taken({0}, {}, {}, {}, f, cells), std::invalid_argument);
+  EXPECT_THROW(ex.deposit_taken({0}, {Q}, {I}, {}, f, cells), std::invalid_argument);
+}
+
+// With cell volumes the heat goes by what each cell holds beyond the particle's temperature:
+// a grain at 1200 K between melt (2000 K) and gas (500 K) that takes heat takes it from the
+// melt cells alone, each moved the same fraction of the way to 1200 K, and the cold gas gives
+// nothing (the capacity split made it colder still: the pbf-point scene's -2400 K cells);
+// one that gives heat gives it to the gas alone. Heat beyond the cells' room brings every
+// cell to 1200 K and the rest goes by capacity. Sums exact in each case.
+TEST_P(ParallelExchangeSerial, HeatComesFromTheCellsBeyondTheParticlesTemperature)
+{
+  const auto mesh = CartesianGridMesh::uniform(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(8, 8, 8), 8, 8, 8);
+  std::vector<double> T, k, rho, mu, cp, U, V;
+  for (long c = 0; c < mesh.n_cells(); ++c) {
+    const bool metal = mesh.cell_centre(c).y() < 4.0;
+    T.push_back(metal ? 2000.0 : 500.0);
+    k.push_back(metal ? 35.95 : 0.026);
+    rho.push_back(metal ? 7430.0 : 7.43);
+    cp.push_back(metal ? 965.0 : 10.0);
+    mu.push_back(1e-3);
+    U.insert(U.end(), {0.0, 0.0, 0.0});
+    V.push_back(1.0);
+  }
+  const CellFluidFields f{T.data(), k.data(), rho.data(), mu.data(), cp.data(), U.data(), nullptr, nullptr, V.data()};
+  ParallelExchange ex(mesh, GetParam(), MPI_COMM_SELF);
+  ex.locate({ParticleShape{Eigen::Vector3d(4.5, GetParam() == DistributionModel::Centre ? 3.5 : 4.0, 4.5), 1.6}});
+  std::vector<CellWeight> w;
+  ex.local_weights(0, w);
+  const double Tp = 1200.0;
+  // the room of each covered cell on each side of Tp (the particle is alone: it claims
+  // each covered cell's whole capacity)
+  double room_hot = 0.0, room_cold = 0.0;
+  for (auto &cw : w) {
+    const double C = V[cw.cell] * rho[cw.cell] * cp[cw.cell];
+    room_hot += C * std::max(T[cw.cell] - Tp, 0.0);
+    room_cold += C * std::max(Tp - T[cw.cell], 0.0);
+  }
+  const std::string m = to_string(GetParam());
+  for (const double Q : {0.4 * room_hot, -0.4 * room_cold, 1.5 * room_hot}) {
+    std::vector<Amounts> cells(std::size_t(mesh.n_cells()), Amounts{});
+    ex.deposit_taken({0}, {Q}, {Eigen::Vector3d::Zero()}, {Tp}, f, cells);
+    double taken = 0.0, from_gas = 0.0, from_melt = 0.0;
+    for (long c = 0; c < mesh.n_cells(); ++c) {
+      taken -= cells[std::size_t(c)][kEnthalpy];
+      (T[std::size_t(c)] < 1000.0 ? from_gas : from_melt) -= cells[std::size_t(c)][kEnthalpy];
+    }
+    const std::string what = Q > room_hot ? "beyond the room" : Q > 0 ? "taken" : "given";
+    meltdem::testing::expect_relative("deposit_taken " + m + " by room, heat " + what + ": sum over the cells", taken,
+                                      Q, 1e-13);
+    if (Q < 0) {
+      if (room_cold > 0) {
+        EXPECT_EQ(from_melt, 0.0);
+        meltdem::testing::expect_relative("deposit_taken " + m + " by room: heat given goes to the gas", from_gas,
+                                          Q, 1e-13);
+      }
+      continue;
+    }
+    if (Q <= room_hot) EXPECT_EQ(from_gas, 0.0) << "a gas cell colder than the particle gave heat";
+    for (auto &cw : w) {
+      const double C = V[cw.cell] * rho[cw.cell] * cp[cw.cell];
+      const double dT_cell = cells[std::size_t(cw.cell)][kEnthalpy] / C;
+      if (T[cw.cell] < Tp && Q <= room_hot) continue;
+      if (Q <= room_hot)  // the same fraction of the way to Tp
+        EXPECT_NEAR(dT_cell / (Tp - T[cw.cell]), Q / room_hot, 1e-12);
+      else  // past Tp only by the capacity share of the rest
+        EXPECT_LT(T[cw.cell] + dT_cell, Tp);
+    }
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(Models, ParallelExchangeSerial,

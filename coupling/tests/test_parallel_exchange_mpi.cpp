@@ -35,7 +35,9 @@ TEST_P(ParallelExchangeMpi, EqualsOneRank)
       one.push_back(1.0 + 1e3 * x.y());  // density varies: capacity weights differ from volume weights
       U.insert(U.end(), {x.x(), x.y(), x.z()});
     }
-    return CellFluidFields{T.data(), one.data(), one.data(), one.data(), one.data(), U.data(), one.data(), nullptr};
+    // cell "volumes" vary too, so the heat goes by what each cell holds beyond the particle
+    return CellFluidFields{T.data(), one.data(), one.data(), one.data(), one.data(), U.data(), one.data(), nullptr,
+                           one.data()};
   };
 
   // reference: everything on this rank alone
@@ -45,12 +47,14 @@ TEST_P(ParallelExchangeMpi, EqualsOneRank)
   serial.locate(k.particles);
   std::vector<Amounts> cells_serial(std::size_t(whole.n_cells()), Amounts{});
   serial.deposit(k.amounts, cells_serial);
-  std::vector<double> heat;
+  std::vector<double> heat, particle_T;
   std::vector<Eigen::Vector3d> impulse;
   for (const Amounts &a : k.amounts) heat.push_back(a[kEnthalpy] * 0.3), impulse.push_back(Eigen::Vector3d(a[kMomY], a[kMomZ], a[kMomX]));
+  // the field at the centre: some covered cells are above, some below the particle
+  for (const auto &p : k.particles) particle_T.push_back(ExchangeCase::field(p.x));
   std::vector<std::int64_t> ids;
   for (const auto &p : k.particles) ids.push_back(p.id);
-  serial.deposit_taken(ids, heat, impulse, fs, cells_serial);
+  serial.deposit_taken(ids, heat, impulse, particle_T, fs, cells_serial);
   std::vector<SampledFluid> sampled_serial;
   serial.sample(fs, sampled_serial);
 
@@ -72,12 +76,13 @@ TEST_P(ParallelExchangeMpi, EqualsOneRank)
   // the records come from the other rank than the one that located them (particles move
   // between DEM ranks during the sub-cycles)
   std::vector<std::int64_t> other_ids;
-  std::vector<double> other_heat;
+  std::vector<double> other_heat, other_T;
   std::vector<Eigen::Vector3d> other_impulse;
   for (std::size_t i = 0; i < k.particles.size(); ++i)
     if (int(i % 2) != rank)
-      other_ids.push_back(k.particles[i].id), other_heat.push_back(heat[i]), other_impulse.push_back(impulse[i]);
-  parallel.deposit_taken(other_ids, other_heat, other_impulse, fp, cells_parallel);
+      other_ids.push_back(k.particles[i].id), other_heat.push_back(heat[i]), other_impulse.push_back(impulse[i]),
+          other_T.push_back(particle_T[i]);
+  parallel.deposit_taken(other_ids, other_heat, other_impulse, other_T, fp, cells_parallel);
   std::vector<SampledFluid> sampled_parallel;
   parallel.sample(fp, sampled_parallel);
 

@@ -525,11 +525,13 @@ void Foam::meltdem::particleCoupling::advance(Time& runTime, const fluidFields& 
     lost_.clear();
     // the melt (mass, its enthalpy and momentum) goes by the volume weights at the end of the
     // step, where it is; the heat and impulse the particles took come from the cells they
-    // sampled at its start, by capacity and mass weights
+    // sampled at its start (heat by what each holds beyond the particle's temperature,
+    // impulse by mass weights)
     std::vector<mc::Amounts> amounts;
     std::vector<std::int64_t> takers;
     std::vector<double> heat;
     std::vector<Eigen::Vector3d> impulse;
+    std::vector<double> takerT;
     std::vector<std::int64_t> leaving;
     for (std::size_t i = 0; i < records.size(); ++i)
     {
@@ -541,6 +543,7 @@ void Foam::meltdem::particleCoupling::advance(Time& runTime, const fluidFields& 
             takers.push_back(r.id);
             heat.push_back(r.heat_absorbed);
             impulse.push_back(r.impulse_from_fluid);
+            takerT.push_back(r.T);
         }
         else
         {
@@ -551,7 +554,7 @@ void Foam::meltdem::particleCoupling::advance(Time& runTime, const fluidFields& 
     }
     std::vector<mc::Amounts> deposited(std::size_t(nCells), mc::Amounts{});
     exchange_->deposit(amounts, deposited);
-    startExchange_->deposit_taken(takers, heat, impulse, cells, deposited);
+    startExchange_->deposit_taken(takers, heat, impulse, takerT, cells, deposited);
 
     const scalarField& V = mesh_.V();
     forAll(V, celli)

@@ -34,8 +34,9 @@ struct SampledFluid {
 // the heat-capacity-weighted mean sum w rho cp T / sum w rho cp (the temperature the
 // covered cells would reach if mixed; the plain mean where all capacities are zero): a
 // particle half in melt, half in gas sees the melt's temperature, not the middle, and
-// the heat it takes is drawn from the cells by the same w rho cp weights
-// (ParallelExchange::deposit_taken), so gas beside the melt gives almost none of it. The
+// the heat it takes is drawn from the cells by what each holds beyond the particle's
+// temperature (ParallelExchange::deposit_taken), so gas colder than the particle gives none
+// of it. The
 // velocity likewise is the mass-weighted mean sum w rho U / sum w rho (the mixture's
 // momentum over its mass), and the drag reaction is split by w rho.
 // Throws std::invalid_argument for empty weights or a missing required field.

@@ -17,8 +17,8 @@
 // sample() averages the continuum's cell fields with these weights (what the particle
 // sees; its temperature weighted by heat capacity and its velocity by mass too); deposit()
 // spreads the melt the particles hand over onto the cells with the same weights, and
-// deposit_taken() takes the heat and impulse they took from the cells with the capacity and
-// mass weights, so the exchange is symmetric and sums to what was handed over to round-off.
+// deposit_taken() takes the heat and impulse they took from the cells (heat by what each
+// cell holds beyond the particle's temperature, impulse by mass weights), so the exchange is symmetric and sums to what was handed over to round-off.
 // Serial runs use the same code, so np N equals np 1 to round-off.
 #include "meltdem/coupling/exchange_record.h"
 #include "meltdem/coupling/fluid_sampling.h"
@@ -79,19 +79,26 @@ class ParallelExchange {
   // mesh are not deposited (the caller books them as outflow).
   void deposit(const std::vector<Amounts> &local_amounts, std::vector<Amounts> &cell_amounts) const;
   // Collective. Takes what each particle took from the fluid out of the cells: its
-  // heat (J; negative: gave) from the enthalpy with particle i's share of cell c
-  // w_ic rho_c cp_c / sum_c' w_ic' rho_c' cp_c', its drag and buoyancy impulse (kg m/s)
-  // from the momentum with the share w_ic rho_c / sum_c' w_ic' rho_c' (volume weights where
-  // the sums are zero): the weights its fluid temperature and velocity were sampled with,
-  // so every cell it covers changes temperature and velocity alike, and a gas cell beside
-  // melt (1e-5 of the heat capacity, 1e-2..1e-4 of the mass) gives almost nothing. Sums to
-  // what was taken exactly; particles outside the mesh give nothing. The particles are named
-  // by id (any rank may report any located particle: call it with the location the fluid was
-  // sampled at, and the particles' records after they moved); located particles no rank
-  // reports took nothing.
+  // heat (J; negative: gave) from the enthalpy, each cell c in proportion to the heat it
+  // holds beyond the particle's temperature T_p (end of step) on the side the heat flowed,
+  // A_c = s_ic rho_c cp_c V_c max(T_c - T_p, 0) for heat taken (T_p - T_c for heat given),
+  // s_ic the particle's part of the particle volume cell c holds (1 for a particle alone
+  // in the cell), so every cell moves the same fraction of the way towards T_p and
+  // none passes it: a gas cell colder than a grain that takes heat from the melt beside it
+  // gives nothing, and the melt gives it all. Heat beyond sum_c A_c (a fluid step too
+  // long for the cells' capacity: the bound guard of the solver stops the run) is taken by
+  // the capacity weights w_ic rho_c cp_c / sum w rho cp the fluid temperature was sampled
+  // with. The drag and buoyancy impulse (kg m/s) comes from the momentum with the share
+  // w_ic rho_c / sum_c' w_ic' rho_c' (volume weights where the sums are zero), the weights
+  // its fluid velocity was sampled with, so a light gas cell beside melt gives little.
+  // Sums to what was taken exactly; particles outside the mesh give nothing. The particles
+  // are named by id (any rank may report any located particle: call it with the location
+  // the fluid was sampled at, and the particles' records after they moved); located
+  // particles no rank reports took nothing. Without cell volumes (fields.volume null) the
+  // heat goes by the capacity weights alone.
   void deposit_taken(const std::vector<std::int64_t> &ids, const std::vector<double> &heat,
-                     const std::vector<Eigen::Vector3d> &impulse, const CellFluidFields &fields,
-                     std::vector<Amounts> &cell_amounts) const;
+                     const std::vector<Eigen::Vector3d> &impulse, const std::vector<double> &particle_T,
+                     const CellFluidFields &fields, std::vector<Amounts> &cell_amounts) const;
 
   // weights of global particle g over this rank's cells (for tests and diagnostics)
   void local_weights(std::int64_t g, std::vector<CellWeight> &out) const;
