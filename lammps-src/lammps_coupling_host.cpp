@@ -20,7 +20,10 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <iterator>
+#include <sstream>
 #include <string>
+#include <vector>
 
 namespace mc = meltdem::coupling;
 using namespace LAMMPS_NS;
@@ -83,6 +86,52 @@ FILE *errors_only_screen()
   return f;
 }
 
+// the input's commands for a resumed run (see the header): continuation lines joined, the
+// box command replaced by read_restart, the state-making commands left out
+std::vector<std::string> resume_commands(const std::string &input_file, const std::string &restart_file)
+{
+  static const char *skipped[] = {"create_atoms", "velocity",      "set",           "displace_atoms", "delete_atoms",
+                                  "run",          "minimize",      "write_restart", "write_data",     "write_dump",
+                                  "change_box",   "reset_timestep", "create_bonds", "rerun",          "read_dump",
+                                  "group"};
+  static const char *unreplayable[] = {"jump", "label", "include", "next"};
+  std::ifstream in(input_file);
+  std::vector<std::string> out;
+  std::string line, command;
+  bool box = false;
+  while (std::getline(in, line)) {
+    // a trailing & continues the command on the next line (LAMMPS's rule)
+    const auto last = line.find_last_not_of(" \t\r");
+    if (last != std::string::npos && line[last] == '&') {
+      command += line.substr(0, last) + ' ';
+      continue;
+    }
+    command += line;
+    std::istringstream words(command);
+    std::string word, id;
+    words >> word >> id;
+    std::string keep = command;
+    command.clear();
+    if (word.empty() || word[0] == '#') continue;
+    for (const char *u : unreplayable)
+      if (word == u)
+        throw LammpsSetupError("cannot resume from a restart with the LAMMPS input " + input_file + ": its '" + word +
+                               "' command cannot be replayed line by line (write the input without it)");
+    if (word == "read_data" || word == "create_box" || word == "read_restart") {
+      if (!box) out.push_back("read_restart " + restart_file);
+      box = true;
+      continue;
+    }
+    if (std::find_if(std::begin(skipped), std::end(skipped), [&](const char *k) { return word == k; }) !=
+        std::end(skipped))
+      continue;
+    out.push_back(keep);
+    if (word == "dump") out.push_back("dump_modify " + id + " append yes");
+  }
+  if (!box) throw LammpsSetupError("cannot resume: the LAMMPS input " + input_file + " defines no box (read_data or create_box)");
+  return out;
+}
+
 }  // namespace
 
 struct LammpsCouplingHost::Impl {
@@ -94,7 +143,7 @@ struct LammpsCouplingHost::Impl {
 };
 
 LammpsCouplingHost::LammpsCouplingHost(MPI_Comm comm, const std::string &input_file, const std::string &log_file,
-                                       bool echo)
+                                       bool echo, const std::string &restart_file, double restart_time)
   : impl_(std::make_unique<Impl>())
 {
   MPI_Comm_rank(comm, &impl_->me);
@@ -107,7 +156,8 @@ LammpsCouplingHost::LammpsCouplingHost(MPI_Comm comm, const std::string &input_f
     if (!all)
       throw LammpsSetupError("cannot open the LAMMPS input file " + input_file + " (missing, empty or not a file)");
   }
-  std::vector<std::string> args = {"meltdemFoam-lammps", "-log", log_file, "-nocite"};
+  // a resumed run appends to the log of the run it continues
+  std::vector<std::string> args = {"meltdemFoam-lammps", "-log", restart_file.empty() ? log_file : "none", "-nocite"};
   if (!echo) args.insert(args.end(), {"-echo", "none"});
   std::vector<char *> argv;
   for (auto &a : args) argv.push_back(a.data());
@@ -118,9 +168,16 @@ LammpsCouplingHost::LammpsCouplingHost(MPI_Comm comm, const std::string &input_f
 
   // setup errors reach the terminal (LAMMPS prints them to screen and log, then stops);
   // once the input is read, per-run output goes to the log only
-  impl_->lmp->input->file(input_file.c_str());
-
   LAMMPS *lmp = impl_->lmp;
+  if (restart_file.empty())
+    lmp->input->file(input_file.c_str());
+  else {
+    lmp->input->one(("log " + log_file + " append").c_str());
+    for (const std::string &line : resume_commands(input_file, restart_file)) lmp->input->one(line.c_str());
+    lmp->update->atime = restart_time;
+    lmp->update->atimestep = lmp->update->ntimestep;
+  }
+
   if (std::strcmp(lmp->update->unit_style, "si") != 0)
     throw LammpsSetupError(std::string("the LAMMPS input ") + input_file + " uses units " +
                            lmp->update->unit_style + "; the coupling exchanges SI quantities: use units si");
@@ -236,6 +293,15 @@ void LammpsCouplingHost::command(const std::string &line)
 {
   impl_->lmp->input->one(line.c_str());
   impl_->needs_setup = true;
+}
+
+void LammpsCouplingHost::write_restart(const std::string &file) { command("write_restart " + file); }
+
+void LammpsCouplingHost::write_particles(const std::string &file)
+{
+  const std::string melt = std::string("f_") + impl_->melt->id;
+  command("write_dump all custom " + file + " id type x y z vx vy vz radius mass " + melt + "[1] " + melt +
+          "[2] modify time yes sort id format float %.17g");
 }
 
 }  // namespace meltdem

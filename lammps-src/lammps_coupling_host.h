@@ -34,7 +34,17 @@ class LammpsCouplingHost {
   // Opens LAMMPS on comm (log to log_file, no screen output unless echo), checks the
   // library against the headers, registers MeltDEM's styles, runs input_file. The input
   // must use units si, define exactly one fix powder/melt, and not end inside a run.
-  LammpsCouplingHost(MPI_Comm comm, const std::string &input_file, const std::string &log_file, bool echo);
+  //
+  // Resuming (restart_file not empty): the input is run command by command, its box
+  // command (read_data, create_box) replaced by read_restart restart_file, and the commands
+  // that make or change the initial state (create_atoms, read_data ... add, velocity, set,
+  // displace_atoms, delete_atoms, run, minimize, ...) skipped: the restart holds that state.
+  // The settings (pair, fixes with their IDs, computes, dumps: appended to) are applied as
+  // written, so fixes with restart state (powder/melt, powder/insert) continue. LAMMPS
+  // 29Sep2021 does not store the simulated time in restarts: restart_time sets it. Inputs
+  // with jump, label, include or next cannot be replayed (LammpsSetupError).
+  LammpsCouplingHost(MPI_Comm comm, const std::string &input_file, const std::string &log_file, bool echo,
+                     const std::string &restart_file = "", double restart_time = 0.0);
   ~LammpsCouplingHost();
   LammpsCouplingHost(const LammpsCouplingHost &) = delete;
   LammpsCouplingHost &operator=(const LammpsCouplingHost &) = delete;
@@ -75,6 +85,12 @@ class LammpsCouplingHost {
 
   // execute one LAMMPS command (e.g. write_restart) between intervals
   void command(const std::string &line);
+
+  // between intervals: the binary restart file a resumed run starts from (collective)
+  void write_restart(const std::string &file);
+  // between intervals: every particle as a LAMMPS custom dump (id type x y z vx vy vz radius
+  // mass and fix powder/melt's temperature and melted fraction), the simulated time in it
+  void write_particles(const std::string &file);
 
  private:
   struct Impl;

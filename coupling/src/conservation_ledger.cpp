@@ -289,7 +289,17 @@ Amounts worst(const std::vector<LedgerStep> &h, Amounts LedgerStep::*field)
 }
 }  // namespace
 
-Amounts ConservationLedger::worst_continuum_error() const { return worst(history_, &LedgerStep::continuum_error); }
-Amounts ConservationLedger::worst_system_error() const { return worst(history_, &LedgerStep::system_error); }
+Amounts ConservationLedger::worst_continuum_error() const
+{
+  Amounts w = worst(history_, &LedgerStep::continuum_error);
+  for (int q = 0; q < kComponents; ++q) w[q] = std::max(w[q], loaded_worst_continuum_[q]);
+  return w;
+}
+Amounts ConservationLedger::worst_system_error() const
+{
+  Amounts w = worst(history_, &LedgerStep::system_error);
+  for (int q = 0; q < kComponents; ++q) w[q] = std::max(w[q], loaded_worst_system_[q]);
+  return w;
+}
 
 }  // namespace meltdem::coupling

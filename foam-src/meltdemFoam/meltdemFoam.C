@@ -183,6 +183,10 @@ int main(int argc, char *argv[])
         {
             particleBalance->execute();
             particles->book(particleBalance());
+            if (runTime.writeTime())
+            {
+                particles->write();
+            }
         }
 
         runTime.printExecutionTime(Info);

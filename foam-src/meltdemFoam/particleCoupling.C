@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <chrono>
 #include <fstream>
+#include <sstream>
 #include <cmath>
 #include <unordered_map>
 
@@ -187,13 +188,26 @@ Foam::meltdem::particleCoupling::particleCoupling
         ownMpi_ = true;
     }
     MPI_Comm_dup(MPI_COMM_WORLD, &comm_);
+    // a run started at a write time with a complete checkpoint resumes from it
+    double lammpsTime = 0;
+    std::string ledgerState;
+    const bool resumed = readCheckpoint(lammpsTime, ledgerState);
+    const fileName restartFile
+    (
+        resumed ? checkpointDir(mesh.time().timeName())/"lammps.restart" : fileName()
+    );
+    if (resumed)
+    {
+        Info<< "Particles: resuming from the checkpoint " << restartFile
+            << " (LAMMPS time " << lammpsTime << " s)" << endl;
+    }
     try
     {
         lammps_.reset
         (
             new ::meltdem::LammpsCouplingHost
             (
-                comm_, input, log, false
+                comm_, input, log, false, restartFile, lammpsTime
             )
         );
     }
@@ -215,15 +229,37 @@ Foam::meltdem::particleCoupling::particleCoupling
     ledger_.reset(new mc::ConservationLedger(comm_));
     const fileName dir(mesh.time().globalPath()/"postProcessing"/"particleLedger");
     if (Pstream::master()) mkDir(dir);
-    ledger_->open_csv(dir/"ledger.csv");
-    if (Pstream::master())
+    if (resumed)
     {
-        particlesCsv_.reset(new std::ofstream(dir/"particles.csv"));
-        *particlesCsv_
-            << "time,dt,dem_steps,particles,solid_mass,particle_enthalpy,heat_absorbed,"
-            << "mass_melted,enthalpy_handed_over,momentum_handed_over_x,"
-            << "momentum_handed_over_y,momentum_handed_over_z,drag_impulse_x,"
-            << "drag_impulse_y,drag_impulse_z,laser_heat,exchange_seconds,lammps_seconds\n";
+        // the ledger goes on from the checkpoint; the rows a run wrote past it before it
+        // stopped are dropped
+        try
+        {
+            std::istringstream is(ledgerState);
+            ledger_->load_state(is);
+            ledger_->resume_csv(dir/"ledger.csv");
+        }
+        catch (const std::exception& e)
+        {
+            FatalErrorInFunction
+                << "cannot resume the particle ledger from "
+                << checkpointDir(mesh.time().timeName()) << ": " << e.what()
+                << exit(FatalError);
+        }
+        resumeParticlesCsv(dir/"particles.csv", ledger_->last().step + 1);
+    }
+    else
+    {
+        ledger_->open_csv(dir/"ledger.csv");
+        if (Pstream::master())
+        {
+            particlesCsv_.reset(new std::ofstream(dir/"particles.csv"));
+            *particlesCsv_
+                << "time,dt,dem_steps,particles,solid_mass,particle_enthalpy,heat_absorbed,"
+                << "mass_melted,enthalpy_handed_over,momentum_handed_over_x,"
+                << "momentum_handed_over_y,momentum_handed_over_z,drag_impulse_x,"
+                << "drag_impulse_y,drag_impulse_z,laser_heat,exchange_seconds,lammps_seconds\n";
+        }
     }
 
     Info<< "Particles: " << lammps_->particles() << " particles, DEM step "

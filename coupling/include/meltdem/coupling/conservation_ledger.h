@@ -34,6 +34,7 @@
 
 #include <cstdint>
 #include <fstream>
+#include <iosfwd>
 #include <memory>
 #include <string>
 #include <vector>
@@ -103,6 +104,18 @@ class ConservationLedger {
 
   // rank 0 writes one row per end_step() to path (header written once, file truncated)
   void open_csv(const std::string &path);
+  // after load_state(): keep path's rows up to the loaded step, drop later ones (a run that
+  // went on past its checkpoint before it stopped) and append from there
+  void resume_csv(const std::string &path);
+
+  // Checkpoint (conservation_ledger_checkpoint.cpp): everything the balances of later steps
+  // depend on (previous and first totals, cumulative sources, scales, the last step and the
+  // worst errors so far), as text with every double exact. save_state writes on rank 0 only
+  // (os may be a dummy elsewhere); load_state is read by every rank from the same file, so
+  // a resumed run continues the ledger as if it had not stopped. Throws std::runtime_error
+  // for a malformed checkpoint.
+  void save_state(std::ostream &os) const;
+  void load_state(std::istream &is);
   static std::string csv_header();
   static std::string csv_row(const LedgerStep &s);
 
@@ -126,6 +139,8 @@ class ConservationLedger {
   ExactSum prev_[kCategories][kComponents], first_[kCategories][kComponents];
   ExactSum cum_system_sources_[kComponents], cum_continuum_sources_[kComponents];
   ExactSum cum_out_[kComponents], cum_lost_[kComponents], cum_in_[kComponents];
+  // the worst errors of the steps before a checkpoint this run resumed from
+  Amounts loaded_worst_continuum_ = {}, loaded_worst_system_ = {};
   std::unique_ptr<std::ofstream> csv_;
 };
 
