@@ -1,0 +1,184 @@
+"""PNG plots of a run (matplotlib, Agg): balances, melted mass, absorbed laser power and, for a
+moving laser, the bead cross-section. Each function returns the path written, or None when the
+case has nothing to plot for it."""
+import os
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+FLOOR = 1e-18   # lowest |relative error| shown: below double round-off
+COMPONENTS = (("mass", "mass", "C0"), ("enthalpy", "energy (enthalpy)", "C3"), ("mom", "momentum", "C2"))
+
+
+def _abs_log(v):
+    v = np.abs(np.asarray(v, float))
+    return np.where(v > 0, v, np.nan)
+
+
+def _component(led, comp, kind):
+    """|error| series of one ledger component; momentum: the largest of x, y, z."""
+    if comp == "mom":
+        cols = [f"mom_{c}_{kind}" for c in "xyz" if f"mom_{c}_{kind}" in led.dtype.names]
+        if not cols:
+            return None
+        return np.max(np.abs(np.column_stack([led[c] for c in cols])), axis=1)
+    c = f"{comp}_{kind}"
+    return np.abs(led[c]) if c in led.dtype.names else None
+
+
+def balances(path, led=None, bal=None):
+    """Per-step and cumulative relative balance errors (log |error|): the ledger's system
+    (particles + continuum + pending) and continuum errors, else meltdemBalance's relative ones."""
+    if led is None and bal is None:
+        return None
+    fig, axes = plt.subplots(1, 2, figsize=(11, 4.2), sharex=True)
+    if led is not None and len(led) > 1:
+        t = led["time"][1:] * 1e6
+        for comp, label, colour in COMPONENTS:
+            for kind, style, tag in (("system_error", "-", "system"), ("continuum_error", "--", "continuum")):
+                v = _component(led[1:], comp, kind)
+                if v is not None:
+                    axes[0].plot(t, _abs_log(v), style, color=colour, lw=1, label=f"{label}, {tag}")
+                v = _component(led[1:], comp, "cumulative_" + kind)
+                if v is not None:
+                    axes[1].plot(t, _abs_log(v), style, color=colour, lw=1, label=f"{label}, {tag}")
+        axes[0].set_title("per step: |(sources - change) / total| (ledger)")
+        axes[1].set_title("cumulative since the start (ledger)")
+    elif bal is not None:
+        t = bal["time"] * 1e6
+        names = bal.dtype.names
+        for col, label, colour in (("massErrorRel", "mass", "C0"), ("enthalpyErrorRel", "energy (enthalpy)", "C3"),
+                                   ("momentumErrorRel", "momentum", "C2")):
+            if col in names:
+                axes[1].plot(t, _abs_log(bal[col]), color=colour, lw=1, label=label)
+                axes[0].plot(t[1:], _abs_log(np.diff(bal[col])), color=colour, lw=1, label=label)
+        axes[0].set_title("per step: change of the relative error (meltdemBalance)")
+        axes[1].set_title("cumulative relative error (meltdemBalance)")
+    for ax in axes:
+        ax.set_yscale("log")
+        lo, hi = ax.get_ylim()
+        if lo < FLOOR < hi:       # round-off zeros (1e-50) would squeeze the scale
+            ax.set_ylim(bottom=FLOOR)
+        ax.set_xlabel("time [us]")
+        ax.set_ylabel("|relative error|")
+        ax.grid(True, which="both", alpha=0.3)
+        if ax.lines:
+            ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return path
+
+
+def melted_mass(path, led=None, pcsv=None):
+    """Metal handed over by the particles (ledger exchange, cumulative), the molten mass fix
+    powder/melt reports (particles.csv), particle and continuum metal, feed and losses."""
+    if led is None and pcsv is None:
+        return None
+    fig, ax = plt.subplots(figsize=(7, 4.2))
+    if led is not None:
+        t = led["time"] * 1e6
+        ax.plot(t, np.cumsum(led["mass_exchange"]), "C3", lw=2, label="metal handed to the continuum (ledger)")
+        ax.plot(t, led["mass_particles"], "C0", lw=1, label="metal in particles")
+        ax.plot(t, led["mass_continuum"] - led["mass_continuum"][0], "C1", lw=1, label="continuum metal gained")
+        if np.any(led["mass_feed"]):
+            ax.plot(t, np.cumsum(led["mass_feed"]), "C2", lw=1, label="powder fed")
+        if np.any(led["mass_cumulative_lost"]):
+            ax.plot(t, led["mass_cumulative_lost"], "C7", lw=1, label="left the mesh (lost)")
+    if pcsv is not None and "mass_melted" in pcsv.dtype.names:
+        ax.plot(pcsv["time"] * 1e6, np.cumsum(pcsv["mass_melted"]), "k:", lw=1.5, label="molten (fix powder/melt)")
+    ax.set_xlabel("time [us]")
+    ax.set_ylabel("mass [kg]")
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return path
+
+
+def absorbed_power(path, bal=None, pcsv=None, eta_p=None):
+    """Laser power absorbed by the continuum (meltdemBalance laserPower) and the particles
+    (particles.csv laser_heat / dt) vs time; eta P as a reference line."""
+    has_c = bal is not None and "laserPower" in bal.dtype.names
+    has_p = pcsv is not None and "laser_heat" in pcsv.dtype.names
+    if not (has_c or has_p):
+        return None
+    fig, ax = plt.subplots(figsize=(7, 4.2))
+    if has_c:
+        ax.plot(bal["time"] * 1e6, bal["laserPower"], "C1", lw=1, label="continuum")
+    if has_p:
+        ax.plot(pcsv["time"] * 1e6, pcsv["laser_heat"] / pcsv["dt"], "C0", lw=1, label="particles")
+    if has_c and has_p:
+        t = pcsv["time"]
+        ax.plot(t * 1e6, np.interp(t, bal["time"], bal["laserPower"]) + pcsv["laser_heat"] / pcsv["dt"], "k", lw=1.5,
+                label="total")
+    if eta_p:
+        ax.axhline(eta_p, color="0.5", ls="--", lw=1, label="absorptivity x power")
+    ax.set_xlabel("time [us]")
+    ax.set_ylabel("absorbed laser power [W]")
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return path
+
+
+def cross_section(centres, fields, trk):
+    """Cells of the slice across the track at its middle: (u across, v up, their alpha.metal,
+    liquid fraction or None, the slice's along-track position). Cells: the layer of cell
+    centres nearest to the track's middle."""
+    axis, up = trk["axis"], trk["up"]
+    across = np.cross(up, axis)
+    across /= np.linalg.norm(across)
+    mid = 0.5 * (trk["start"] + trk["end"])
+    s = (centres - mid) @ axis
+    layers = np.unique(np.round(s, 9))          # 1 nm: cell centres of one layer agree to that
+    s0 = layers[np.argmin(np.abs(layers))]
+    sel = np.abs(s - s0) <= 1e-9
+    u = centres[sel] @ across
+    v = centres[sel] @ up
+    a = fields["alpha.metal"][sel]
+    lf = fields["liquidFraction"][sel] if "liquidFraction" in fields else None
+    return u, v, a, lf, float(mid @ axis + s0)
+
+
+def bead_profile(path, centres, fields, trk, time, tmax_lf=None):
+    """Metal fraction on the cross-section of the track at its middle, last written time; the
+    alpha = 1/2 contour (surface) and, when given, the fused zone (max liquid fraction = 1/2)."""
+    if trk is None or "alpha.metal" not in fields:
+        return None
+    u, v, a, lf, pos = cross_section(centres, fields, trk)
+    if len(u) < 4:
+        return None
+    fig, ax = plt.subplots(figsize=(7, 4.6))
+    uu, vv = np.unique(np.round(u, 9)), np.unique(np.round(v, 9))
+    if len(uu) * len(vv) == len(u):
+        iu = np.searchsorted(uu, np.round(u, 9))
+        iv = np.searchsorted(vv, np.round(v, 9))
+        A = np.full((len(vv), len(uu)), np.nan)
+        A[iv, iu] = a
+        im = ax.pcolormesh(uu * 1e6, vv * 1e6, A, shading="nearest", cmap="viridis", vmin=0, vmax=1)
+        ax.contour(uu * 1e6, vv * 1e6, A, levels=[0.5], colors="w", linewidths=1.5)
+        if tmax_lf is not None:
+            L = np.full((len(vv), len(uu)), np.nan)
+            L[iv, iu] = tmax_lf
+            if np.nanmax(L) >= 0.5:
+                ax.contour(uu * 1e6, vv * 1e6, L, levels=[0.5], colors="r", linewidths=1.2, linestyles="--")
+    else:
+        im = ax.tricontourf(u * 1e6, v * 1e6, a, levels=np.linspace(0, 1, 11), cmap="viridis")
+    fig.colorbar(im, ax=ax, label="metal fraction alpha.metal")
+    ax.set_aspect("equal")
+    ax.set_xlabel("across the track [um]")
+    ax.set_ylabel("up (against the beam) [um]")
+    ax.set_title(f"bead cross-section at {pos * 1e6:.0f} um along the track, t = {time * 1e6:.1f} us"
+                 + ("\n(white: surface alpha = 1/2; red dashed: fused, max liquid fraction = 1/2)"
+                    if tmax_lf is not None else ""), fontsize=9)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return path
