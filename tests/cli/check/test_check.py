@@ -1,0 +1,103 @@
+"""`meltdem check`: exit 0 on built CI cases of examples (ded-stream and lmd-track coupled,
+mjt-droplets continuum-only, powder-pour DEM-only); exit 1 on broken copies, each with exactly one
+ERROR line that names the file and the entry:
+
+    delete endTime            -> system/controlDict: endTime missing
+    units lj                  -> in.particles: units lj
+    laser outside             -> constant/meltdemProperties: laser.position ... outside the mesh
+    laser path end outside    -> constant/meltdemProperties: laser.end of the path ... outside
+    mesh outside the box      -> in.particles: LAMMPS box ... does not contain the mesh box
+    metal.k deleted           -> constant/meltdemProperties: metal.k missing
+    0/U in km/h dimensions    -> 0/U: dimensions
+    DEM: read_data missing    -> in.pour: read_data ...: file missing
+"""
+import os
+import re
+import shutil
+import sys
+import tempfile
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+from clitest import SRC, build_example, check_absolute, meltdem  # noqa: E402
+
+T = "cli.check"
+ok = True
+work = tempfile.mkdtemp(prefix="cli_check_")
+
+
+def sub(path, pattern, repl, count=1):
+    text = open(path).read()
+    new, n = re.subn(pattern, repl, text, count=count, flags=re.M)
+    assert n, f"{pattern!r} not found in {path}"
+    open(path, "w").write(new)
+
+
+def run_check(case):
+    rc, out, err = meltdem("check", case)
+    errors = [ln.strip()[len("ERROR "):] for ln in out.splitlines() if ln.strip().startswith("ERROR ")]
+    return rc, out, errors
+
+
+cases = {}
+for name in ("ded-stream", "lmd-track", "mjt-droplets"):
+    cases[name] = os.path.join(work, name)
+    build_example(name, cases[name])
+pour = os.path.join(work, "powder-pour")
+os.makedirs(pour)
+shutil.copy(os.path.join(SRC, "examples", "powder-pour", "in.pour"), pour)
+cases["powder-pour"] = pour
+for name, case in cases.items():
+    rc, out, errors = run_check(case)
+    print(out)
+    ok &= check_absolute(T, f"{name} CI case: exit code", rc, 0, 0)
+    ok &= check_absolute(T, f"{name} CI case: problems reported", len(errors), 0, 0)
+
+
+def broken(label, base, edit, expect):
+    """A copy of base with edit(case) applied: exit 1, one ERROR line, containing each of expect."""
+    global ok
+    case = os.path.join(work, re.sub(r"[^A-Za-z0-9.]+", "_", label))
+    shutil.copytree(base, case)
+    edit(case)
+    rc, out, errors = run_check(case)
+    print(f"--- {label}\n{out}")
+    hit = [e for e in errors if all(x in e for x in expect)]
+    ok &= check_absolute(T, f"{label}: exit code", rc, 1, 0)
+    ok &= check_absolute(T, f"{label}: ERROR lines", len(errors), 1, 0)
+    ok &= check_absolute(T, f"{label}: names '{' ... '.join(expect)}'", len(hit), 1, 0)
+
+
+ded = cases["ded-stream"]
+lmd = cases["lmd-track"]
+broken("delete endTime", ded, lambda c: sub(os.path.join(c, "system/controlDict"), r"^endTime .*\n", ""),
+       ["system/controlDict:", "endTime missing"])
+broken("units lj", ded, lambda c: sub(os.path.join(c, "in.particles"), r"^units si", "units lj"),
+       ["in.particles:", "units lj"])
+broken("laser position outside", ded,
+       lambda c: sub(os.path.join(c, "constant/meltdemProperties"), r"position\s+\(\S+", "position     (0.01"),
+       ["constant/meltdemProperties:", "laser.position", "outside the mesh"])
+# lmd-track's laser moves (position + velocity until tOff): twice the speed leaves the plate
+broken("laser path end outside", lmd,
+       lambda c: sub(os.path.join(c, "constant/meltdemProperties"), r"velocity\s+\((\S+)",
+                     lambda m: f"velocity     ({float(m.group(1)) * 40!r}"),
+       ["constant/meltdemProperties:", "laser.end of the path", "outside the mesh"])
+broken("mesh outside the LAMMPS box", ded,
+       lambda c: sub(os.path.join(c, "system/blockMeshDict"), r"^scale 1;", "scale 1.2;"),
+       ["in.particles:", "LAMMPS box", "does not contain the mesh box"])
+broken("metal.k deleted", ded,
+       lambda c: sub(os.path.join(c, "constant/meltdemProperties"), r"^(\s*)k\s+35\.95;\n", ""),
+       ["constant/meltdemProperties:", "metal.k missing"])
+broken("0/U dimensions not SI", ded,
+       lambda c: sub(os.path.join(c, "0/U"), r"dimensions\s+\[[^\]]*\]", "dimensions [0 1 0 0 0 0 0]"),
+       ["0/U:", "dimensions [0 1 0 0 0 0 0]", "SI dimensions of U"])
+broken("powder/melt keyword missing", ded,
+       lambda c: sub(os.path.join(c, "in.particles"), r" latent \S+", ""),
+       ["in.particles:", "powder/melt", "latent"])
+broken("DEM read_data file missing", pour,
+       lambda c: sub(os.path.join(c, "in.pour"), r"^create_box.*$", "read_data grains.data"),
+       ["in.pour:", "read_data grains.data: file missing"])
+if ok:
+    shutil.rmtree(work, ignore_errors=True)
+else:
+    print(f"kept {work}")
+sys.exit(0 if ok else 1)

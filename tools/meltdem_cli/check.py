@@ -1,0 +1,377 @@
+"""`meltdem check CASE`: validates a case before launch. Every problem names the file and the entry
+(`system/controlDict: endTime missing`); what was checked is listed when all is fine.
+
+Checks: files present (system/, constant/ dictionaries meltdemFoam reads, the initial fields, the
+LAMMPS input named by particles.lammpsInput and the data files it reads), SI units (LAMMPS `units
+si`, OpenFOAM dimensions of the known fields), domains consistent (the LAMMPS box contains the mesh
+box), materials complete (constant/meltdemProperties metal{}/gas{}/darcy{}/surfaceTension{}/
+evaporation{} entries the switched-on terms read, transportProperties, the fix powder/melt
+keywords) and the laser path inside the mesh (as laserHeatSource::checkInBounds does).
+"""
+import os
+
+from . import foamdict as fd
+from .lammps_input import LammpsInput
+
+# entries the solver reads (foam-src/meltdemModels/*, foam-src/meltdemFoam)
+CONTROL = ("startTime", "endTime", "deltaT", "writeInterval")
+SCHEMES = ("ddtSchemes", "gradSchemes", "divSchemes", "laplacianSchemes")
+METAL = ("cp", "k", "L", "Tsolidus", "Tliquidus")
+GAS = ("cp", "k")
+SURFACE = ("sigma0", "dSigmadT", "Tsigma0", "sigmaMin")
+EVAPORATION = ("pAmbient", "CT", "Tboil", "hv", "cp", "Th0", "CM")
+LASER = ("power", "absorptivity", "radius")
+MELT_KEYWORDS = ("cp", "Tmelt", "latent", "temp")
+# SI dimensions [kg m s K mol A cd] of the fields meltdemFoam reads
+DIMENSIONS = {"T": "0 0 0 1 0 0 0", "U": "0 1 -1 0 0 0 0", "p_rgh": "1 -1 -2 0 0 0 0",
+              "alpha.metal": "0 0 0 0 0 0 0", "p": "1 -1 -2 0 0 0 0"}
+G_DIMENSIONS = "0 1 -2 0 0 0 0"
+GREAT = 1e300
+
+
+class Report:
+    def __init__(self):
+        self.problems, self.checked, self.notes = [], [], []
+
+    def bad(self, where, msg):
+        self.problems.append(f"{where}: {msg}")
+
+    def ok(self, what):
+        self.checked.append(what)
+
+    def note(self, msg):
+        self.notes.append(msg)
+
+
+def case_kind(case):
+    """'foam' (system/controlDict), 'dem' (a LAMMPS in.* input and no controlDict) or None."""
+    if os.path.isfile(os.path.join(case, "system", "controlDict")):
+        return "foam"
+    if dem_input(case):
+        return "dem"
+    return None
+
+
+def dem_input(case):
+    """The LAMMPS input of a DEM-only case: in.* in the case folder (one, or the one named like
+    the folder / in.pour); None when there is none."""
+    if not os.path.isdir(case):
+        return None
+    ins = sorted(f for f in os.listdir(case) if f.startswith("in.") and os.path.isfile(os.path.join(case, f)))
+    if not ins:
+        return None
+    if len(ins) == 1:
+        return ins[0]
+    base = os.path.basename(os.path.abspath(case))
+    for f in ins:
+        if f == f"in.{base}":
+            return f
+    return ins[0]
+
+
+def scene_vars(case):
+    """-var overrides a scene recorded for its DEM input (CASE/scene.json 'vars'), {} otherwise."""
+    import json
+    p = os.path.join(case, "scene.json")
+    try:
+        v = json.load(open(p)).get("vars", {})
+        return {str(k): str(x) for k, x in v.items()} if isinstance(v, dict) else {}
+    except (OSError, ValueError, AttributeError):
+        return {}
+
+
+def _read(case, rel, rep, required=True):
+    p = os.path.join(case, rel)
+    if not os.path.isfile(p):
+        if required:
+            rep.bad(rel, "file missing")
+        return None
+    try:
+        return fd.read(p)
+    except fd.FoamDictError as e:
+        rep.bad(rel, f"cannot be parsed ({e})")
+        return None
+
+
+def _need(d, keys, rel, rep, prefix=""):
+    """Positive-number entries (as meltdemProperties::readPositive); returns those present."""
+    got = {}
+    for k in keys:
+        v = fd.number(d, k)
+        if fd.value(d, k) is None:
+            rep.bad(rel, f"{prefix}{k} missing")
+        elif v is None:
+            rep.bad(rel, f"{prefix}{k} is not a number ({' '.join(map(str, d[k]))})")
+        else:
+            got[k] = v
+    return got
+
+
+def mesh_box(case, rep):
+    """Mesh bounding box: constant/polyMesh/points when present, else blockMeshDict vertices x scale."""
+    pts = os.path.join(case, "constant", "polyMesh", "points")
+    if os.path.isfile(pts):
+        b = fd.read_points(pts)
+        if b:
+            return b, "constant/polyMesh/points"
+    rel = "system/blockMeshDict"
+    d = _read(case, rel, rep, required=not os.path.isfile(pts))
+    if d is None:
+        return None, None
+    scale = fd.number(d, "scale") if "scale" in d else fd.number(d, "convertToMeters")
+    scale = 1.0 if scale is None else scale
+    verts = fd.value(d, "vertices")
+    xyz = [fd.vector(v) for v in (verts[0] if verts and isinstance(verts[0], list) else [])]
+    if not xyz or any(v is None for v in xyz):
+        rep.note(f"{rel}: vertices not plain numbers; mesh box taken after blockMesh only")
+        return None, None
+    lo = tuple(min(v[k] for v in xyz) * scale for k in range(3))
+    hi = tuple(max(v[k] for v in xyz) * scale for k in range(3))
+    return (lo, hi), f"{rel} vertices x {scale:g}"
+
+
+def _fmt(b):
+    return "(" + " ".join(f"{x:.6g}" for x in b[0]) + ") - (" + " ".join(f"{x:.6g}" for x in b[1]) + ")"
+
+
+def check_lammps(case, rel, rep, mesh=None, coupled=False, overrides=None):
+    p = os.path.join(case, rel)
+    if not os.path.isfile(p):
+        rep.bad(rel, "file missing (LAMMPS input)")
+        return None
+    lmp = LammpsInput(p, overrides)
+    u = lmp.units()
+    if u != "si":
+        rep.bad(rel, f"units {u or '(none: LAMMPS default lj)'}: MeltDEM styles and the coupling need 'units si'")
+    else:
+        rep.ok(f"{rel}: units si")
+    for f in lmp.read_data_files():
+        if not os.path.isfile(os.path.join(case, f)):
+            rep.bad(rel, f"read_data {f}: file missing")
+        else:
+            rep.ok(f"{rel}: read_data {f} present")
+    for _, w in lmp.find("read_restart"):
+        if len(w) > 1 and not os.path.isfile(os.path.join(case, w[1].replace("*", ""))) and "*" not in w[1]:
+            rep.bad(rel, f"read_restart {w[1]}: file missing")
+    melts = lmp.fixes("powder/melt")
+    for n, w in melts:
+        missing = [k for k in MELT_KEYWORDS if k not in w[4:]]
+        if missing:
+            rep.bad(rel, f"line {n}: fix {w[1]} powder/melt: keyword(s) {' '.join(missing)} missing")
+        else:
+            rep.ok(f"{rel}: fix powder/melt has cp Tmelt latent temp")
+    if coupled and not melts:
+        rep.bad(rel, "no fix powder/melt (the coupling exchanges through it)")
+    if mesh is not None:
+        box, src = lmp.box()
+        if box is None:
+            rep.note(f"{rel}: LAMMPS box not known before the run ({src}); domain check skipped")
+        else:
+            span = max(h - l for l, h in zip(*mesh))
+            tol = 1e-9 * span
+            out = [a for k, a in enumerate("xyz")
+                   if mesh[0][k] < box[0][k] - tol or mesh[1][k] > box[1][k] + tol]
+            if out:
+                rep.bad(rel, f"LAMMPS box {_fmt(box)} ({src}) does not contain the mesh box {_fmt(mesh)} in {','.join(out)}")
+            else:
+                rep.ok(f"{rel}: LAMMPS box {_fmt(box)} contains the mesh {_fmt(mesh)}")
+    if lmp.unresolved:
+        rep.note(f"{rel}: variables without a value here: {' '.join(sorted(set(lmp.unresolved)))}")
+    return lmp
+
+
+def check_laser(d, mesh, rep, rel):
+    las = d.get("laser")
+    if not isinstance(las, dict):
+        rep.bad(rel, "laser: sub-dictionary missing (physics laser on)")
+        return
+    _need(las, LASER, rel, rep, "laser.")
+    if mesh is None:
+        return
+    lo, hi = mesh
+    tol = 1e-9 * max(h - l for l, h in zip(lo, hi))
+
+    def inside(p):
+        return all(lo[k] - tol <= p[k] <= hi[k] + tol for k in range(3))
+
+    num = lambda k, default: fd.number(las, k) if fd.number(las, k) is not None else default  # noqa: E731
+    t_end = min(num("tStop", GREAT), num("tOff", GREAT))
+    t0 = num("tStart", 0.0)
+    pts = []
+    if "path" in las:
+        path = fd.value(las, "path")
+        raw = path[0] if path and isinstance(path[0], list) else []
+        pts = [("path", fd.vector(v)) for v in raw]
+        if not pts or any(p is None for _, p in pts):
+            rep.bad(rel, "laser.path: not a list of (x y z) points")
+            return
+        if fd.number(las, "speed") is None:
+            rep.bad(rel, "laser.speed missing (path given)")
+    else:
+        pos = fd.vector((fd.value(las, "position") or [None])[0])
+        if pos is None:
+            rep.bad(rel, "laser.position missing or not (x y z)")
+            return
+        pts.append(("position", pos))
+        vel = fd.vector((fd.value(las, "velocity") or [None])[0]) or (0.0, 0.0, 0.0)
+        if any(vel):
+            if t_end >= 0.5 * GREAT:
+                rep.bad(rel, "laser.velocity non-zero but neither tStop nor tOff given: the path would leave the mesh")
+            else:
+                tau = max(t_end - t0, 0.0)
+                pts.append((f"end of the path (position + velocity x {tau:.4g} s)",
+                            tuple(pos[k] + vel[k] * tau for k in range(3))))
+    bad = [(what, p) for what, p in pts if not inside(p)]
+    for what, p in bad:
+        rep.bad(rel, f"laser.{what}: point ({' '.join(f'{x:.6g}' for x in p)}) lies outside the mesh {_fmt(mesh)}")
+    if not bad:
+        rep.ok(f"{rel}: laser path ({len(pts)} point(s)) inside the mesh")
+
+
+def check_foam(case, rep):
+    ctl = _read(case, "system/controlDict", rep)
+    if ctl is not None:
+        for k in CONTROL:
+            if fd.value(ctl, k) is None:
+                rep.bad("system/controlDict", f"{k} missing")
+            elif fd.number(ctl, k) is None:
+                rep.bad("system/controlDict", f"{k} is not a number")
+        e, s = fd.number(ctl, "endTime"), fd.number(ctl, "startTime")
+        if e is not None and s is not None and e <= s:
+            rep.bad("system/controlDict", f"endTime {e:g} is not after startTime {s:g}")
+        rep.ok("system/controlDict: " + ", ".join(CONTROL))
+    sch = _read(case, "system/fvSchemes", rep)
+    if sch is not None:
+        for k in SCHEMES:
+            if not isinstance(sch.get(k), dict):
+                rep.bad("system/fvSchemes", f"{k} missing")
+        rep.ok("system/fvSchemes: " + ", ".join(SCHEMES))
+    sol = _read(case, "system/fvSolution", rep)
+    if sol is not None:
+        for k in ("solvers", "PIMPLE"):
+            if not isinstance(sol.get(k), dict):
+                rep.bad("system/fvSolution", f"{k} missing")
+        rep.ok("system/fvSolution: solvers, PIMPLE")
+    mesh, src = mesh_box(case, rep)
+    if mesh:
+        rep.ok(f"mesh box {_fmt(mesh)} from {src}")
+
+    tp = _read(case, "constant/transportProperties", rep)
+    if tp is not None:
+        phases = fd.value(tp, "phases")
+        names = phases[0] if phases and isinstance(phases[0], list) else []
+        if len(names) != 2:
+            rep.bad("constant/transportProperties", "phases missing (phases (metal gas);)")
+        for ph in names:
+            sub = tp.get(ph)
+            if not isinstance(sub, dict):
+                rep.bad("constant/transportProperties", f"{ph}: sub-dictionary missing")
+                continue
+            _need(sub, ("nu", "rho"), "constant/transportProperties", rep, f"{ph}.")
+        if fd.value(tp, "sigma") is None:
+            rep.bad("constant/transportProperties", "sigma missing")
+        rep.ok("constant/transportProperties: phases, nu, rho, sigma")
+    g = _read(case, "constant/g", rep)
+    if g is not None:
+        dims = fd.value(g, "dimensions")
+        if dims and isinstance(dims[0], list) and " ".join(dims[0][:7]) != G_DIMENSIONS:
+            rep.bad("constant/g", f"dimensions [{' '.join(dims[0])}] are not m/s^2 [{G_DIMENSIONS}]")
+        if fd.vector((fd.value(g, "value") or [None])[0]) is None:
+            rep.bad("constant/g", "value missing or not (x y z)")
+        rep.ok("constant/g: dimensions, value")
+
+    rel = "constant/meltdemProperties"
+    md = _read(case, rel, rep)
+    physics = {}
+    if md is not None:
+        ph = md.get("physics")
+        if not isinstance(ph, dict):
+            rep.bad(rel, "physics missing (the per-term switches)")
+            ph = {}
+        physics = {k: fd.switch(ph, k, k == "flow") for k in
+                   ("flow", "energy", "darcy", "surfaceTension", "marangoni", "recoil", "laser",
+                    "evaporation", "buoyancy", "particles")}
+        on = [k for k, v in physics.items() if v]
+        rep.ok(f"{rel}: physics on: {' '.join(on) or '(none)'}")
+        if physics["energy"]:
+            for sub, keys in (("metal", METAL + (("beta", "Tref") if physics["buoyancy"] else ())), ("gas", GAS)):
+                if not isinstance(md.get(sub), dict):
+                    rep.bad(rel, f"{sub}: sub-dictionary missing (physics energy on)")
+                    continue
+                got = _need(md[sub], keys, rel, rep, f"{sub}.")
+                if "Tsolidus" in got and "Tliquidus" in got and not got["Tliquidus"] > got["Tsolidus"]:
+                    rep.bad(rel, f"metal.Tsolidus ({got['Tsolidus']:g}) must be below Tliquidus ({got['Tliquidus']:g})")
+            rep.ok(f"{rel}: metal {{{' '.join(METAL)}}}, gas {{{' '.join(GAS)}}}")
+        for term, sub, keys in (("darcy", "darcy", ("C", "b")), ("surfaceTension", "surfaceTension", SURFACE),
+                                ("evaporation", "evaporation", EVAPORATION)):
+            if physics.get(term):
+                if not isinstance(md.get(sub), dict):
+                    rep.bad(rel, f"{sub}: sub-dictionary missing (physics {term} on)")
+                else:
+                    _need(md[sub], keys, rel, rep, f"{sub}.")
+                    rep.ok(f"{rel}: {sub} {{{' '.join(keys)}}}")
+        if physics["laser"]:
+            check_laser(md, mesh, rep, rel)
+
+    fields = ["alpha.metal", "U", "p_rgh"] + (["T"] if physics.get("energy") else [])
+    for f in fields:
+        rel0 = f"0/{f}"
+        d = _read(case, rel0, rep, required=not os.path.isdir(os.path.join(case, "processor0", "0")))
+        if d is None:
+            continue
+        dims = fd.value(d, "dimensions")
+        got = " ".join(dims[0][:7]) if dims and isinstance(dims[0], list) else None
+        if got is None:
+            rep.bad(rel0, "dimensions missing")
+        elif [float(x) for x in got.split()] != [float(x) for x in DIMENSIONS[f].split()]:
+            rep.bad(rel0, f"dimensions [{got}] are not the SI dimensions of {f} [{DIMENSIONS[f]}]")
+    rep.ok("0/: " + ", ".join(fields) + " (SI dimensions)")
+
+    if physics.get("particles") and md is not None:
+        pd = md.get("particles")
+        if not isinstance(pd, dict):
+            rep.bad(rel, "particles: sub-dictionary missing (physics particles on)")
+            return
+        for k in ("lammpsInput", "distribution"):
+            if fd.word(pd, k) is None:
+                rep.bad(rel, f"particles.{k} missing")
+        dist = fd.word(pd, "distribution")
+        if dist and dist not in ("centre", "neighbours", "overlap"):
+            rep.bad(rel, f"particles.distribution {dist} unknown (centre, neighbours, overlap)")
+        inp = fd.word(pd, "lammpsInput")
+        if inp:
+            check_lammps(case, inp, rep, mesh, coupled=True)
+
+
+def check(case):
+    """Report of a case folder."""
+    rep = Report()
+    case = os.path.abspath(case)
+    kind = case_kind(case)
+    if not os.path.isdir(case):
+        rep.bad(case, "no such folder")
+    elif kind == "foam":
+        check_foam(case, rep)
+    elif kind == "dem":
+        check_lammps(case, dem_input(case), rep, overrides=scene_vars(case))
+    else:
+        rep.bad(os.path.basename(case) or case,
+                "not a case: no system/controlDict (coupled or continuum case) and no in.* LAMMPS input (DEM-only case)")
+    return rep, kind
+
+
+def print_report(case, rep, kind, out=None):
+    import sys
+    out = out or sys.stdout
+    label = {"foam": "OpenFOAM/coupled case", "dem": "DEM-only case"}.get(kind, "case")
+    if rep.problems:
+        print(f"meltdem check: {case} ({label}): {len(rep.problems)} problem(s)", file=out)
+        for p in rep.problems:
+            print(f"  ERROR {p}", file=out)
+    else:
+        print(f"meltdem check: {case} ({label}): OK", file=out)
+        for c in rep.checked:
+            print(f"  ok    {c}", file=out)
+    for n in rep.notes:
+        print(f"  note  {n}", file=out)
+    return 0 if not rep.problems else 1

@@ -1,0 +1,187 @@
+"""A small reader of OpenFOAM dictionaries (no PyFoam): enough for what `meltdem check` and
+`meltdem run` read (controlDict, blockMeshDict, meltdemProperties, transportProperties, field
+headers). Values are kept as token lists; lists in parentheses become Python lists.
+
+    d = read("case/system/controlDict")      # FoamDict; d.get("endTime") -> ['2e-05']
+    number(d, "endTime")                     # 2e-05, or None when missing / not a number
+
+Not handled (reported as unreadable by the caller, never guessed): #include, #calc, $macros
+other than plain top-level $name substitutions.
+"""
+import os
+import re
+
+_TOKEN = re.compile(r'"(?:[^"\\]|\\.)*"|[(){};\[\]]|[^\s(){};\[\]"]+')
+
+
+class FoamDictError(ValueError):
+    pass
+
+
+def _strip_comments(text):
+    text = re.sub(r"/\*.*?\*/", " ", text, flags=re.S)
+    return re.sub(r"//[^\n]*", " ", text)
+
+
+def tokenize(text):
+    return _TOKEN.findall(_strip_comments(text))
+
+
+def _parse_list(tokens, i, close):
+    out = []
+    while i < len(tokens):
+        t = tokens[i]
+        if t == close:
+            return out, i + 1
+        if t in ("(", "["):
+            sub, i = _parse_list(tokens, i + 1, ")" if t == "(" else "]")
+            out.append(sub)
+            continue
+        if t == "{":
+            sub, i = _parse_dict(tokens, i + 1, "}")
+            out.append(sub)
+            continue
+        out.append(t)
+        i += 1
+    raise FoamDictError(f"unclosed '{'(' if close == ')' else '['}'")
+
+
+def _parse_dict(tokens, i, close):
+    d = {}
+    while i < len(tokens):
+        t = tokens[i]
+        if t == close:
+            return d, i + 1
+        if t == ";":
+            i += 1
+            continue
+        if t.startswith("#"):          # directive: #include "x", #inputMode merge, ...
+            i += 2 if i + 1 < len(tokens) and tokens[i + 1].startswith('"') else 1
+            continue
+        key = t.strip('"')
+        i += 1
+        if i < len(tokens) and tokens[i] == "{":
+            sub, i = _parse_dict(tokens, i + 1, "}")
+            d[key] = sub
+            continue
+        value = []
+        while i < len(tokens) and tokens[i] not in (";", close):
+            v = tokens[i]
+            if v in ("(", "["):
+                sub, i = _parse_list(tokens, i + 1, ")" if v == "(" else "]")
+                value.append(sub)
+                continue
+            if v == "{":
+                sub, i = _parse_dict(tokens, i + 1, "}")
+                value.append(sub)
+                continue
+            value.append(v)
+            i += 1
+        if i < len(tokens) and tokens[i] == ";":
+            i += 1
+        d[key] = value
+    if close is None:
+        return d, i
+    raise FoamDictError("unclosed '{'")
+
+
+def parse(text):
+    d, _ = _parse_dict(tokenize(text), 0, None)
+    return d
+
+
+def read(path):
+    """The dictionary of a file (FoamFile header kept as d['FoamFile']); raises OSError when
+    missing, FoamDictError when unbalanced."""
+    with open(path, errors="replace") as f:
+        return parse(f.read())
+
+
+def to_float(tok):
+    try:
+        return float(tok)
+    except (TypeError, ValueError):
+        return None
+
+
+def value(d, key):
+    """The value tokens of key (None when missing or when key is a sub-dictionary)."""
+    v = d.get(key) if isinstance(d, dict) else None
+    return v if isinstance(v, list) else None
+
+
+def number(d, key):
+    """The scalar of 'key value;' (the last token, so 'nu [0 2 -1 0 0 0 0] 1e-6;' works too)."""
+    v = value(d, key)
+    if not v:
+        return None
+    return to_float(v[-1]) if not isinstance(v[-1], list) else None
+
+
+def vector(tok):
+    """(x y z) token list -> tuple of 3 floats, None otherwise."""
+    if isinstance(tok, list) and len(tok) == 3:
+        vals = [to_float(t) for t in tok]
+        if all(v is not None for v in vals):
+            return tuple(vals)
+    return None
+
+
+def word(d, key):
+    v = value(d, key)
+    return v[0].strip('"') if v and isinstance(v[0], str) else None
+
+
+def switch(d, key, default=False):
+    w = word(d, key)
+    if w is None:
+        return default
+    return w.lower() in ("on", "yes", "true", "1", "y")
+
+
+def set_entries(path, entries):
+    """Set top-level 'key value;' entries of a dictionary file in place, keeping everything else
+    (used when foamDictionary is not available)."""
+    with open(path) as f:
+        text = f.read()
+    for key, val in entries.items():
+        pat = re.compile(rf"^(\s*){re.escape(key)}\s+[^;{{]*;", re.M)
+        if pat.search(text):
+            text = pat.sub(lambda m: f"{m.group(1)}{key} {val};", text, count=1)
+        else:
+            text = text.rstrip("\n") + f"\n{key} {val};\n"
+    with open(path, "w") as f:
+        f.write(text)
+
+
+def read_points(path):
+    """Bounding box ((xmin ymin zmin), (xmax ymax zmax)) of an ASCII constant/polyMesh/points file,
+    None when it is binary or unreadable."""
+    try:
+        with open(path, errors="replace") as f:
+            text = f.read()
+    except OSError:
+        return None
+    if re.search(r"format\s+binary", text):
+        return None
+    body = text.split("FoamFile", 1)[-1]
+    body = body[body.find("}") + 1:]
+    pts = re.findall(r"\(\s*(\S+)\s+(\S+)\s+(\S+)\s*\)", body)
+    try:
+        xyz = [(float(a), float(b), float(c)) for a, b, c in pts]
+    except ValueError:
+        return None
+    if not xyz:
+        return None
+    return tuple(min(p[k] for p in xyz) for k in range(3)), tuple(max(p[k] for p in xyz) for k in range(3))
+
+
+def time_dirs(case):
+    """Numeric time folder names of a case (or a processor folder), sorted by value."""
+    out = []
+    if not os.path.isdir(case):
+        return out
+    for name in os.listdir(case):
+        if to_float(name) is not None and os.path.isdir(os.path.join(case, name)):
+            out.append(name)
+    return sorted(out, key=float)

@@ -1,0 +1,413 @@
+"""`meltdem run`: one case from an example name or a case folder to its post-processed output.
+
+    example name -> scene.py build CASE --ci|--full (powder-pour: in.pour copied)
+    check (stop on errors) -> mesh (blockMesh when system/blockMeshDict and no polyMesh)
+    -> decompose (--np > 1) -> ONE job: [mpirun -np N] meltdemFoam [-parallel] | meltdem-lmp -in IN
+    -> reconstructPar (N > 1) -> post-processing (meltdem_cli.post) -> scene.py analyse (examples)
+
+--resume (coupled/continuum cases): the latest time T with CASE/meltdemRestart/T/complete and the
+OpenFOAM time folder (CASE/T or processor0/T); system/controlDict gets startFrom startTime;
+startTime T (foamDictionary), then the solver is relaunched without meshing or decomposing.
+"""
+import ctypes
+import json
+import os
+import shutil
+import signal
+import subprocess
+import sys
+import time
+
+from . import check as chk
+from . import examples as ex
+from . import foamdict as fd
+from .examples import StepError
+from .progress import FoamProgress, LammpsProgress, Reporter
+
+RESTART_DIR = "meltdemRestart"
+
+
+def say(msg):
+    print(f"meltdem: {msg}", flush=True)
+
+
+def bin_dir():
+    return os.environ.get("MELTDEM_BIN") or os.path.join(ex.source_dir(), "build", "bin")
+
+
+def env():
+    e = ex.scene_env()
+    e["MELTDEM_BIN"] = bin_dir()
+    return e
+
+
+def _die_with_parent():
+    """The solver ends when meltdem is killed (mpirun forwards the signal to its ranks)."""
+    try:
+        ctypes.CDLL("libc.so.6").prctl(1, signal.SIGTERM)   # PR_SET_PDEATHSIG
+    except Exception:
+        pass
+
+
+def tool(cmd, case, log):
+    """A short OpenFOAM tool (blockMesh, decomposePar, ...), its output in CASE/log."""
+    with open(os.path.join(case, log), "w") as f:
+        r = subprocess.run(cmd, cwd=case, stdout=f, stderr=subprocess.STDOUT, env=dict(env(), PWD=case))
+    if r.returncode != 0:
+        raise StepError(f"{cmd[0]} failed (rc {r.returncode}): read {os.path.join(case, log)}")
+
+
+def launch(cmd, case, log, tracker):
+    """Run the solver job with the progress line; returns (rc, wall seconds)."""
+    t0 = time.time()
+    rep = Reporter(tracker)
+    with open(os.path.join(case, log), "w") as f:
+        p = subprocess.Popen(cmd, cwd=case, stdout=f, stderr=subprocess.STDOUT, env=dict(env(), PWD=case),
+                             preexec_fn=_die_with_parent)
+        try:
+            while p.poll() is None:
+                rep.update()
+                time.sleep(0.5)
+        except KeyboardInterrupt:
+            p.send_signal(signal.SIGTERM)
+            try:
+                p.wait(timeout=20)
+            except subprocess.TimeoutExpired:
+                p.kill()
+            raise
+        rep.update(final=True)
+    return p.returncode, time.time() - t0
+
+
+def mpirun(np_):
+    return ["mpirun", "--allow-run-as-root", "--oversubscribe", "-np", str(np_)]
+
+
+def failure_reason(case, log):
+    """The first error line of a solver log (FOAM FATAL ... message, LAMMPS ERROR), '' if none."""
+    try:
+        lines = open(os.path.join(case, log), errors="replace").read().splitlines()
+    except OSError:
+        return ""
+    for i, ln in enumerate(lines):
+        if "FOAM FATAL" in ln:
+            rest = [x.strip() for x in lines[i + 1:i + 8] if x.strip() and not x.strip().startswith(("From ", "in file"))]
+            return (rest[0] if rest else ln.strip())[:200]
+        if ln.startswith("ERROR") or " ERROR:" in ln:
+            return ln.strip()[:200]
+    return ""
+
+
+# --------------------------------------------------------------------------------- OpenFOAM case
+def processor_dirs(case):
+    return sorted(d for d in os.listdir(case) if d.startswith("processor") and d[9:].isdigit())
+
+
+def decompose(case, np_, mesh_box):
+    rel = "system/decomposeParDict"
+    p = os.path.join(case, rel)
+    n = None
+    if os.path.isfile(p):
+        try:
+            n = fd.number(fd.read(p), "numberOfSubdomains")
+        except (OSError, fd.FoamDictError):
+            n = None
+    if n is None or int(n) != np_:
+        # simple decomposition along the longest side of the mesh
+        axis = 0
+        if mesh_box:
+            span = [h - l for l, h in zip(*mesh_box)]
+            axis = span.index(max(span))
+        split = [1, 1, 1]
+        split[axis] = np_
+        with open(p, "w") as f:
+            f.write("FoamFile { version 2.0; format ascii; class dictionary; object decomposeParDict; }\n"
+                    f"// written by meltdem run --np {np_}\nnumberOfSubdomains {np_};\nmethod simple;\n"
+                    f"coeffs {{ n ({split[0]} {split[1]} {split[2]}); }}\n"
+                    f"simpleCoeffs {{ n ({split[0]} {split[1]} {split[2]}); delta 0.001; }}\n")
+        say(f"wrote {rel} ({np_} subdomains along {'xyz'[axis]})")
+    tool(["decomposePar", "-force"], case, "log.decomposePar")
+
+
+def latest_checkpoint(case):
+    """(T name, where the OpenFOAM fields are) of the latest complete checkpoint, or raises
+    StepError naming what is missing."""
+    rdir = os.path.join(case, RESTART_DIR)
+    if not os.path.isdir(rdir):
+        raise StepError(f"cannot resume: no checkpoint folder {rdir} (the solver writes "
+                        f"{RESTART_DIR}/<time>/ at every write time)")
+    complete = [t for t in fd.time_dirs(rdir) if os.path.isfile(os.path.join(rdir, t, "complete"))]
+    if not complete:
+        raise StepError(f"cannot resume: no complete checkpoint in {rdir} (no <time>/complete: the run "
+                        f"was stopped before its first write time finished)")
+    proc = os.path.isdir(os.path.join(case, "processor0"))
+    foam_times = fd.time_dirs(os.path.join(case, "processor0") if proc else case)
+    have = {float(t): t for t in foam_times}
+    for t in sorted(complete, key=float, reverse=True):
+        if float(t) in have:
+            return t, have[float(t)], proc
+    where = "processor0/" if proc else ""
+    raise StepError(f"cannot resume: checkpoints {', '.join(complete)} in {rdir} have no OpenFOAM time "
+                    f"folder {where}<time> in {case}")
+
+
+START_FILE = os.path.join("system", "meltdemStartAsWritten.json")
+
+
+def set_start_time(case, t):
+    """startFrom startTime; startTime T in system/controlDict, by foamDictionary when available.
+    The entries as written are kept in system/meltdemStartAsWritten.json (restored after the
+    resumed run finishes, or before a fresh run)."""
+    cd = os.path.join(case, "system", "controlDict")
+    keep = os.path.join(case, START_FILE)
+    if not os.path.isfile(keep):
+        d = fd.read(cd)
+        json.dump({"startFrom": fd.word(d, "startFrom") or "startTime",
+                   "startTime": " ".join(map(str, fd.value(d, "startTime") or ["0"]))}, open(keep, "w"))
+    _set_control(case, {"startFrom": "startTime", "startTime": t})
+
+
+def restore_start_time(case):
+    """Undo set_start_time (a finished resume, or a fresh run of a case resumed before)."""
+    keep = os.path.join(case, START_FILE)
+    if os.path.isfile(keep):
+        orig = json.load(open(keep))
+        _set_control(case, orig)
+        os.remove(keep)
+        say(f"system/controlDict: startFrom {orig['startFrom']}; startTime {orig['startTime']} (as written) restored")
+
+
+def _set_control(case, entries):
+    cd = os.path.join(case, "system", "controlDict")
+    try:
+        for key, val in entries.items():
+            subprocess.run(["foamDictionary", "-entry", key, "-set", str(val), cd], check=True,
+                           stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, env=env(), cwd=case)
+    except (OSError, subprocess.CalledProcessError):
+        fd.set_entries(cd, entries)
+    d = fd.read(cd)
+    if any(" ".join(map(str, fd.value(d, k) or [])) != str(v) for k, v in entries.items()):
+        raise StepError(f"could not set {entries} in {cd}")
+
+
+def clear_earlier_output(case, start):
+    """Time folders after startTime and checkpoints of an earlier run (the new run rewrites them)."""
+    later = [t for t in fd.time_dirs(case) if float(t) > start]
+    rdir = os.path.join(case, RESTART_DIR)
+    if later or os.path.isdir(rdir):
+        say(f"earlier output in {case} ({len(later)} time folder(s) after {start:g}"
+            f"{', ' + RESTART_DIR + '/' if os.path.isdir(rdir) else ''}) is overwritten: starting from startTime {start:g}")
+        for t in later:
+            shutil.rmtree(os.path.join(case, t))
+        shutil.rmtree(rdir, ignore_errors=True)
+
+
+def run_foam(case, np_, resume):
+    cd = fd.read(os.path.join(case, "system", "controlDict"))
+    t_end = fd.number(cd, "endTime")
+    mesh, _ = chk.mesh_box(case, chk.Report())
+    procs = processor_dirs(case)
+    if resume:
+        t, _, decomposed = latest_checkpoint(case)
+        if decomposed:
+            np_ = np_ if np_ > 1 else len(procs)
+            if np_ != len(procs):
+                raise StepError(f"cannot resume on {np_} rank(s): the case is decomposed into {len(procs)} "
+                                f"processor folders (resume with --np {len(procs)})")
+        elif np_ > 1:
+            raise StepError(f"cannot resume on {np_} ranks: the checkpoint was written by a serial run "
+                            f"(resume with --np 1)")
+        set_start_time(case, t)
+        say(f"resuming from the checkpoint at t = {t} s ({RESTART_DIR}/{t}; system/controlDict: "
+            f"startFrom startTime; startTime {t})")
+        t_start = float(t)
+    else:
+        restore_start_time(case)
+        cd = fd.read(os.path.join(case, "system", "controlDict"))
+        t_start = fd.number(cd, "startTime") or 0.0
+        clear_earlier_output(case, t_start)
+        if os.path.isfile(os.path.join(case, "system", "blockMeshDict")) and \
+                not os.path.isfile(os.path.join(case, "constant", "polyMesh", "points")):
+            say("meshing: blockMesh (log.blockMesh)")
+            tool(["blockMesh"], case, "log.blockMesh")
+        if np_ > 1 and _wedge(case):
+            say(f"the mesh has wedge (axisymmetric) patches: runs serial, --np {np_} not used")
+            np_ = 1
+        if np_ > 1:
+            say(f"decomposing into {np_} subdomains (log.decomposePar)")
+            decompose(case, np_, mesh)
+    solver = os.path.join(bin_dir(), "meltdemFoam")
+    if not os.access(solver, os.X_OK):
+        raise StepError(f"{solver} not found: build MeltDEM first (scripts/build.sh)")
+    cmd = [solver] if np_ == 1 else mpirun(np_) + [solver, "-parallel"]
+    say(f"running {' '.join(cmd[-2:] if np_ > 1 else cmd[:1]).replace(bin_dir() + '/', '')} on {np_} rank(s), "
+        f"t = {t_start:g} -> {t_end:g} s (log.meltdemFoam)")
+    rc, wall = launch(cmd, case, "log.meltdemFoam", FoamProgress(os.path.join(case, "log.meltdemFoam"),
+                                                                  t_end, t_start))
+    with open(os.path.join(case, "wall_seconds"), "w") as f:
+        f.write(f"{wall:.1f} {np_}\n")
+    if rc != 0:
+        why = failure_reason(case, "log.meltdemFoam")
+        raise StepError(f"meltdemFoam failed (rc {rc}){': ' + why if why else ''}; read "
+                        f"{os.path.join(case, 'log.meltdemFoam')}"
+                        + (f" (resume: meltdem run {case} --resume)" if os.path.isdir(os.path.join(case, RESTART_DIR)) else ""))
+    say(f"meltdemFoam finished in {wall:.0f} s wall")
+    if resume:
+        restore_start_time(case)
+    if np_ > 1:
+        say("reconstructing (log.reconstructPar)")
+        tool(["reconstructPar", "-newTimes"], case, "log.reconstructPar")
+    return wall
+
+
+def _wedge(case):
+    p = os.path.join(case, "system", "blockMeshDict")
+    try:
+        return "wedge" in open(p).read()
+    except OSError:
+        return False
+
+
+# ----------------------------------------------------------------------------------- DEM case
+def run_dem(case, np_, resume):
+    inp = chk.dem_input(case)
+    if resume:
+        raise StepError("--resume is not supported for DEM-only cases (meltdem-lmp alone): their inputs write "
+                        "no checkpoint that meltdem could restart from; run the case again without --resume")
+    from .lammps_input import LammpsInput
+    overrides = chk.scene_vars(case)
+    lmp_in = LammpsInput(os.path.join(case, inp), overrides)
+    lmp = os.path.join(bin_dir(), "meltdem-lmp")
+    if not os.access(lmp, os.X_OK):
+        raise StepError(f"{lmp} not found: build MeltDEM first (scripts/build.sh)")
+    cmd = [lmp, "-in", inp, "-log", "log.lammps"]
+    for k, v in overrides.items():
+        cmd += ["-var", k, v]
+    if np_ > 1:
+        cmd = mpirun(np_) + cmd
+    runs = lmp_in.runs()
+    say(f"running meltdem-lmp -in {inp} on {np_} rank(s)"
+        + (f", {sum(runs)} steps" if runs else "") + " (log.lammps)")
+    rc, wall = launch(cmd, case, "out.lammps", LammpsProgress(os.path.join(case, "log.lammps"), lmp_in.timestep()))
+    with open(os.path.join(case, "wall_seconds"), "w") as f:
+        f.write(f"{wall:.1f} {np_}\n")
+    if rc != 0:
+        why = failure_reason(case, "log.lammps") or failure_reason(case, "out.lammps")
+        raise StepError(f"meltdem-lmp failed (rc {rc}){': ' + why if why else ''}; read "
+                        f"{os.path.join(case, 'log.lammps')} (screen output: out.lammps)")
+    say(f"meltdem-lmp finished in {wall:.1f} s wall")
+    return wall
+
+
+# ------------------------------------------------------------------ scenes run by their scene.py
+def run_scene(name, case, np_):
+    """Examples whose built case is not one solver case (bjt-droplet: a bed, then one case per
+    impact speed) run through their scene.py run; the progress follows the newest solver log."""
+    subs = sorted(d for d in os.listdir(case) if chk.case_kind(os.path.join(case, d)) == "foam")
+    say(f"{name} runs through its scene.py run (sub-cases {', '.join(subs) or 'none'}; log.run)")
+    log = os.path.join(case, "log.run")
+    p, f = ex.scene_run(name, case, np_, log)
+    t0, current, rep = time.time(), None, None
+    try:
+        while p.poll() is None:
+            logs = [os.path.join(case, s, "log.meltdemFoam") for s in subs]
+            logs = [x for x in logs if os.path.exists(x)]
+            if logs:
+                newest = max(logs, key=os.path.getmtime)
+                if newest != current:
+                    if rep:
+                        rep.update(final=True)
+                    current = newest
+                    sub = os.path.dirname(newest)
+                    t_end = fd.number(fd.read(os.path.join(sub, "system", "controlDict")), "endTime")
+                    say(f"{os.path.basename(sub)}:")
+                    rep = Reporter(FoamProgress(newest, t_end))
+                rep.update()
+            time.sleep(0.5)
+    finally:
+        f.close()
+    if rep:
+        rep.update(final=True)
+    if p.returncode != 0:
+        raise StepError(f"{name} scene run failed (rc {p.returncode}): read {log}")
+    return time.time() - t0, subs
+
+
+# ------------------------------------------------------------------------------------- post
+def postprocess(case, example=None):
+    try:
+        from . import post
+    except ImportError as e:
+        say(f"post-processing unavailable (meltdem_cli.post: {e})")
+        return None
+    say("post-processing (VTK series, plots, summary)")
+    try:
+        return post.postprocess(case, example=example)
+    except Exception as e:  # post-processing must not hide a finished run
+        raise StepError(f"post-processing failed ({type(e).__name__}: {e}); the run's output is in {case}; "
+                        f"retry with: meltdem post {case}")
+
+
+def merge_summary(case, scene_summary_path, post_summary):
+    """summary.json keeps the scene's numbers; the post-processor's are added under 'post'."""
+    if not post_summary:
+        return
+    p = scene_summary_path
+    try:
+        s = json.load(open(p))
+    except (OSError, ValueError):
+        return
+    if isinstance(s, dict) and "post" not in s and isinstance(post_summary, dict):
+        s["post"] = post_summary
+        json.dump(s, open(p, "w"), indent=1, default=str)
+
+
+# ------------------------------------------------------------------------------------- main
+def run(target, case=None, np_=1, resume=False, size="ci", check_first=True, analyse=True):
+    """Returns 0; raises StepError with the one-line reason."""
+    name = target if target in ex.names() and not (os.sep in target or target.startswith(".")) else None
+    if name is None and not os.path.isdir(target):
+        raise StepError(f"'{target}' is neither an example ({', '.join(ex.names())}) nor a case folder")
+    if name:
+        case = os.path.abspath(case or os.path.join(os.getcwd(), name))
+        if resume:
+            if not os.path.isdir(case):
+                raise StepError(f"cannot resume {name}: no case folder {case} (run it first, or give --case DIR)")
+            say(f"resuming {name} in {case} (not rebuilt)")
+        else:
+            say(f"building {name} ({size}) into {case} (log.build)")
+            ex.build(name, case, size)
+    else:
+        case = os.path.abspath(target)
+    t_start = time.time()
+    kind = chk.case_kind(case)
+    if kind is None and name and os.path.isfile(os.path.join(ex.examples_dir(), name, "scene.py")):
+        if resume:
+            raise StepError(f"--resume is not supported for {name} (it runs several sub-cases through its scene.py)")
+        _, subs = run_scene(name, case, np_)
+        for s in subs:
+            postprocess(os.path.join(case, s), example=name)
+    else:
+        if check_first:
+            rep, kind = chk.check(case)
+            if rep.problems:
+                chk.print_report(case, rep, kind, out=sys.stderr)
+                raise StepError(f"{case} fails its checks ({len(rep.problems)} problem(s) above); fix them or "
+                                f"see: meltdem check {case}")
+            say(f"check: {len(rep.checked)} item(s) OK")
+        if kind == "foam":
+            run_foam(case, np_, resume)
+        else:
+            run_dem(case, np_, resume)
+        post = postprocess(case, example=name)
+        if name and analyse and os.path.isfile(os.path.join(ex.examples_dir(), name, "scene.py")):
+            say(f"analysing: {name}/scene.py analyse (log.analyse)")
+            log = ex.analyse(name, case)
+            if log:
+                merge_summary(case, os.path.join(case, "summary.json"), post)
+    say(f"done in {time.time() - t_start:.0f} s: {case}")
+    for f in ("summary.md", "summary.json"):
+        if os.path.isfile(os.path.join(case, f)):
+            say(f"summary: {os.path.join(case, f)}")
+            break
+    return 0
