@@ -133,7 +133,7 @@ def cross_section(centres, fields, trk):
     liquid fraction or None, the slice's along-track position). Cells: the layer of cell
     centres nearest to the track's middle."""
     axis, up = trk["axis"], trk["up"]
-    across = np.cross(up, axis)
+    across = np.cross(axis, up)        # x along, y up -> z across (right-handed)
     across /= np.linalg.norm(across)
     mid = 0.5 * (trk["start"] + trk["end"])
     s = (centres - mid) @ axis
@@ -149,7 +149,8 @@ def cross_section(centres, fields, trk):
 
 def bead_profile(path, centres, fields, trk, time, tmax_lf=None):
     """Metal fraction on the cross-section of the track at its middle, last written time; the
-    alpha = 1/2 contour (surface) and, when given, the fused zone (max liquid fraction = 1/2)."""
+    alpha = 1/2 contour (surface) and, when given, the fused zone (tmax_lf: per cell of the
+    section the largest liquid fraction the cell reached while metal, contour 1/2)."""
     if trk is None or "alpha.metal" not in fields:
         return None
     u, v, a, lf, pos = cross_section(centres, fields, trk)

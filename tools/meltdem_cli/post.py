@@ -122,10 +122,7 @@ def postprocess(case_dir, example=None, fields=True, quiet=True):
             notes.append(f"plot {name}: {type(e).__name__}: {e}")
     if fields_series:
         try:
-            lfmax = None
-            for _, _, f in fields_series[1:]:
-                if "liquidFraction" in f:
-                    lfmax = f["liquidFraction"] if lfmax is None else np.maximum(lfmax, f["liquidFraction"])
+            lfmax = summary.fused_max(fields_series)
             t, c, f = fields_series[-1]
             lf_sec = plots.cross_section(c, dict(f, **{"alpha.metal": lfmax}), trk)[2] if lfmax is not None else None
             if plots.bead_profile(os.path.join(pdir, "bead_profile.png"), c, f, trk, t, lf_sec):

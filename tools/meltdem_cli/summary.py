@@ -265,10 +265,22 @@ def laser_numbers(bal, pcsv, bal_name="meltdemBalance"):
     return s, src
 
 
+def fused_max(fields_series):
+    """Per cell the largest liquid fraction reached while the cell was metal (alpha >= 1/2) over
+    the written times, or None without a liquidFraction field."""
+    out = None
+    for _, _, f in fields_series:
+        if "liquidFraction" not in f or "alpha.metal" not in f:
+            continue
+        v = np.where(f["alpha.metal"] >= 0.5, f["liquidFraction"], 0.0)
+        out = v if out is None else np.maximum(out, v)
+    return out
+
+
 def bead_geometry(fields_series, trk):
     """Bead of a moving laser from the written fields, on the cross-section at the middle of the
-    track (cell resolution): width = widest extent across of the fused cells (max liquid fraction
-    over the written times >= 1/2, metal fraction >= 1/2), penetration = initial surface minus the
+    track (cell resolution): width = widest extent across of the fused cells (liquid fraction
+    >= 1/2 while metal at some written time), penetration = initial surface minus the
     centre of the lowest fused cell, height = highest metal column (sum alpha dv) minus the initial
     one, at the last written time. fields_series: [(time, centres, fields)]."""
     from .plots import cross_section
@@ -277,12 +289,9 @@ def bead_geometry(fields_series, trk):
     t0, c0, f0 = fields_series[0]
     if "alpha.metal" not in f0:
         return {}
-    lfmax = None
-    for t, c, f in fields_series[1:]:
-        lf = f.get("liquidFraction")
-        if lf is None:
-            return {}
-        lfmax = lf if lfmax is None else np.maximum(lfmax, lf)
+    lfmax = fused_max(fields_series)
+    if lfmax is None:
+        return {}
     u, v, a0, _, _ = cross_section(c0, f0, trk)
     tl, cl, fl = fields_series[-1]
     u1, v1, a1, _, _ = cross_section(cl, fl, trk)
@@ -302,7 +311,7 @@ def bead_geometry(fields_series, trk):
     h0 = faces[0] + dv @ A0            # metal surface height per column, start
     h1 = faces[0] + dv @ A1
     surface0 = float(np.median(h0))
-    fused = (L >= 0.5) & (np.maximum(A0, A1) >= 0.5)
+    fused = L >= 0.5
     out = {"bead_height_m": float(max(0.0, np.max(h1 - surface0)))}
     if fused.any():
         du = np.diff(np.concatenate([[uu[0] - (uu[1] - uu[0]) / 2], (uu[1:] + uu[:-1]) / 2,
