@@ -75,9 +75,10 @@ class LammpsProgress:
     """Step from the thermo rows after each 'Step ...' header; the run length from the echoed
     'run N' line; time = step x timestep (the 'timestep dt' line; a Time column when printed)."""
 
-    def __init__(self, log, dt=None):
+    def __init__(self, log, dt=None, runs=None):
         self.f = LogFollower(log)
         self.dt, self.run_len, self.run_start = dt, None, None
+        self.runs, self.n_headers = list(runs or []), 0   # run lengths read from the input
         self.step, self.steps, self.in_thermo, self.cols = None, 0, False, []
         self.t_col = None
         self.t0 = 0.0
@@ -102,6 +103,12 @@ class LammpsProgress:
                     pass
             elif w[0] == "Step":
                 self.in_thermo, self.cols = True, w
+                # a new run: its length from the input (the screen does not echo 'run N'); the
+                # i-th thermo header belongs to the i-th run command (no loops in the input)
+                if self.n_headers < len(self.runs):
+                    self.run_len = self.runs[self.n_headers]
+                self.run_start = None
+                self.n_headers += 1
                 self.t_col = next((i for i, c in enumerate(w) if c in ("Time", "time", "v_t", "v_time")), None)
             elif self.in_thermo and w[0].lstrip("-").isdigit():
                 try:
@@ -158,10 +165,10 @@ class Reporter:
         return line(self.p.t, self.p.t_end, rate_steps, eta)
 
     def update(self, final=False):
-        if not self.p.poll() and not final:
-            return
-        if self.p.steps == 0 and self.p.t == 0 and not final:
-            return
+        if self.p.poll():
+            self.seen = True
+        if not getattr(self, "seen", False):
+            return          # nothing in the log yet (or a run that failed before its first step)
         now = time.time()
         if self.tty:
             if final or self.last_print is None or now - self.last_print >= 0.5:

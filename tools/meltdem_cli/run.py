@@ -280,7 +280,9 @@ def run_dem(case, np_, resume):
     lmp = os.path.join(bin_dir(), "meltdem-lmp")
     if not os.access(lmp, os.X_OK):
         raise StepError(f"{lmp} not found: build MeltDEM first (scripts/build.sh)")
-    cmd = [lmp, "-in", inp, "-log", "log.lammps"]
+    # the progress follows the screen output (out.lammps), line-buffered by stdbuf: LAMMPS writes
+    # its log file through a full stdio buffer unless the input says thermo_modify flush yes
+    cmd = (["stdbuf", "-oL"] if shutil.which("stdbuf") else []) + [lmp, "-in", inp, "-log", "log.lammps"]
     for k, v in overrides.items():
         cmd += ["-var", k, v]
     if np_ > 1:
@@ -288,7 +290,8 @@ def run_dem(case, np_, resume):
     runs = lmp_in.runs()
     say(f"running meltdem-lmp -in {inp} on {np_} rank(s)"
         + (f", {sum(runs)} steps" if runs else "") + " (log.lammps)")
-    rc, wall = launch(cmd, case, "out.lammps", LammpsProgress(os.path.join(case, "log.lammps"), lmp_in.timestep()))
+    rc, wall = launch(cmd, case, "out.lammps", LammpsProgress(os.path.join(case, "out.lammps"), lmp_in.timestep(),
+                                                                     runs))
     with open(os.path.join(case, "wall_seconds"), "w") as f:
         f.write(f"{wall:.1f} {np_}\n")
     if rc != 0:
