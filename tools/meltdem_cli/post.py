@@ -135,10 +135,16 @@ def postprocess(case_dir, example=None, fields=True, quiet=True):
     if example:
         s["example"] = example
     if led is not None:
-        _put(s, sources, summary.ledger_numbers(led), "ledger.csv")
-    vals, srcs = summary.laser_numbers(bal, pcsv, bal_name)
-    for k, v in vals.items():
-        _put(s, sources, {k: v}, srcs[k])
+        try:
+            _put(s, sources, summary.ledger_numbers(led), "ledger.csv")
+        except Exception as e:   # a ledger of another layout: name it, keep the rest
+            notes.append(f"ledger numbers: {type(e).__name__}: {e}")
+    try:
+        vals, srcs = summary.laser_numbers(bal, pcsv, bal_name)
+        for k, v in vals.items():
+            _put(s, sources, {k: v}, srcs[k])
+    except Exception as e:
+        notes.append(f"laser numbers: {type(e).__name__}: {e}")
     if "simulated_time_s" not in s:
         t_candidates = []
         if t_last_field is not None:
@@ -158,8 +164,14 @@ def postprocess(case_dir, example=None, fields=True, quiet=True):
     w, wsrc = casedata.wall_time(case)
     if w is not None:
         _put(s, sources, {"wall_time_s": w}, wsrc)
-    pst, frames = summary.particle_stats(case, pseries)
-    _put(s, sources, pst, f"particle frames ({files.get('particles_source', '')})")
+    try:
+        pst, frames = summary.particle_stats(case, pseries)
+        _put(s, sources, pst, f"particle frames ({files.get('particles_source', '')})")
+        if "particles_ejected" in pst:
+            sources["particles_ejected"] += ": centre above the first frame's bed top, moving up"
+    except Exception as e:
+        frames = None
+        notes.append(f"particle numbers: {type(e).__name__}: {e}")
     if fseries is None and frames:
         try:
             pk = summary.packing(case, frames)

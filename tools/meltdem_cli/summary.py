@@ -22,6 +22,7 @@ import numpy as np
 from . import casedata, vtk_particles
 
 MARK = "meltdem_post"
+FAST = 1.0   # m/s: a grain this fast in any frame counts as thrown (spatter), whatever its direction
 
 # common key <- (scene key, factor to SI), first present wins
 SCENE_KEYS = {
@@ -163,7 +164,7 @@ def particle_stats(case, series):
 
     def col(fr, c):
         return fr["data"][:, fr["columns"].index(c)]
-    start = next((k for k, fr in enumerate(frames) if len(fr["data"])), None)
+    start = next((j for j, fr in enumerate(frames) if len(fr["data"])), None)
     if start is None or start == len(frames) - 1:
         return out, frames
     frames_used = frames[start:]
@@ -172,17 +173,18 @@ def particle_stats(case, series):
     up0 = -sign * col(f0, upc)
     top0 = float(np.max(up0 + r0))
     first_ids = set(col(f0, "id").astype(int))
-    ejected, vmax = set(), 0.0
-    for fr in frames_used[1:]:
+    ejected, fast, vmax = set(), set(), 0.0
+    for j, fr in enumerate(frames_used):
         ids = col(fr, "id").astype(int)
         up = -sign * col(fr, upc)
         vup = -sign * col(fr, vupc)
         sp = np.sqrt(col(fr, "vx") ** 2 + col(fr, "vy") ** 2 + col(fr, "vz") ** 2)
         vmax = max(vmax, float(sp.max()) if len(sp) else 0.0)
-        for i in ids[(up > top0) & (vup > 0)]:
-            if i in first_ids:
-                ejected.add(int(i))
+        fast.update(int(i) for i in ids[sp > FAST])
+        if j:
+            ejected.update(int(i) for i in ids[(up > top0) & (vup > 0)] if i in first_ids)
     out["particles_ejected"] = len(ejected)
+    out[f"particles_faster_than_{FAST:g}_m_per_s"] = len(fast)
     out["particle_speed_max_m_per_s"] = vmax
     return out, frames
 
@@ -337,7 +339,8 @@ LABELS = [
     ("packing_fraction", "packing fraction", ""), ("bed_thickness_m", "bed thickness", "m"),
     ("bed_rms_speed_m_per_s", "bed rms speed (settled: ~0)", "m/s"),
     ("particles_first_frame", "particles (first frame)", ""), ("particles_last_frame", "particles (last frame)", ""),
-    ("particles_ejected", "particles ejected", ""), ("particle_speed_max_m_per_s", "largest particle speed", "m/s"),
+    ("particles_ejected", "particles ejected", ""),
+    (f"particles_faster_than_{FAST:g}_m_per_s", f"particles faster than {FAST:g} m/s (any frame)", ""), ("particle_speed_max_m_per_s", "largest particle speed", "m/s"),
     ("melted_mass_kg", "metal handed from particles to continuum", "kg"),
     ("particle_molten_mass_kg", "molten particle mass (fix powder/melt)", "kg"),
     ("laser_energy_absorbed_J", "laser energy absorbed", "J"),
