@@ -45,7 +45,13 @@ def cmd_post(a):
     if not os.path.isdir(case):
         raise StepError(f"no case folder {case}")
     s = run.postprocess(case, example=a.example)
-    return 0 if s is not None else 1
+    if s is None:
+        return 1
+    for f in ("summary.md", "summary.json"):
+        if os.path.isfile(os.path.join(case, f)):
+            print(f"meltdem: summary: {os.path.join(case, f)}")
+            break
+    return 0
 
 
 def parser():

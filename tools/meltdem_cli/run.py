@@ -191,18 +191,24 @@ def _set_control(case, entries):
 
 
 def clear_earlier_output(case, start):
-    """Time folders after startTime and checkpoints of an earlier run (the new run rewrites them)."""
+    """Time folders after startTime, checkpoints and processor folders of an earlier run (the new
+    run rewrites them; stale ones would be read back by --resume and the post-processing)."""
     later = [t for t in fd.time_dirs(case) if float(t) > start]
     rdir = os.path.join(case, RESTART_DIR)
-    if later or os.path.isdir(rdir):
+    procs = processor_dirs(case)
+    if later or os.path.isdir(rdir) or procs:
+        extra = ([RESTART_DIR + "/"] if os.path.isdir(rdir) else []) + (["processor*/"] if procs else [])
         say(f"earlier output in {case} ({len(later)} time folder(s) after {start:g}"
-            f"{', ' + RESTART_DIR + '/' if os.path.isdir(rdir) else ''}) is overwritten: starting from startTime {start:g}")
+            f"{', ' + ', '.join(extra) if extra else ''}) is overwritten: starting from startTime {start:g}")
         for t in later:
             shutil.rmtree(os.path.join(case, t))
         shutil.rmtree(rdir, ignore_errors=True)
+        for p in procs:
+            shutil.rmtree(os.path.join(case, p))
 
 
-def run_foam(case, np_, resume):
+def run_foam(case, np_, resume, rebuilt=False):
+    """rebuilt: the case was just (re)built from an example, so an existing polyMesh is stale."""
     cd = fd.read(os.path.join(case, "system", "controlDict"))
     t_end = fd.number(cd, "endTime")
     mesh, _ = chk.mesh_box(case, chk.Report())
@@ -226,6 +232,8 @@ def run_foam(case, np_, resume):
         cd = fd.read(os.path.join(case, "system", "controlDict"))
         t_start = fd.number(cd, "startTime") or 0.0
         clear_earlier_output(case, t_start)
+        if rebuilt and os.path.isfile(os.path.join(case, "system", "blockMeshDict")):
+            shutil.rmtree(os.path.join(case, "constant", "polyMesh"), ignore_errors=True)
         if os.path.isfile(os.path.join(case, "system", "blockMeshDict")) and \
                 not os.path.isfile(os.path.join(case, "constant", "polyMesh", "points")):
             say("meshing: blockMesh (log.blockMesh)")
@@ -399,7 +407,7 @@ def run(target, case=None, np_=1, resume=False, size="ci", check_first=True, ana
                                 f"see: meltdem check {case}")
             say(f"check: {len(rep.checked)} item(s) OK")
         if kind == "foam":
-            run_foam(case, np_, resume)
+            run_foam(case, np_, resume, rebuilt=bool(name) and not resume)
         else:
             run_dem(case, np_, resume)
         post = postprocess(case, example=name)
