@@ -149,7 +149,7 @@ def postprocess(case_dir, example=None, fields=True, quiet=True):
         t_candidates = []
         if t_last_field is not None:
             t_candidates.append((t_last_field, "last OpenFOAM write time"))
-        if pseries and pseries[0]["times"]:
+        if pseries and pseries[0]["times"] and pseries[0]["time_source"] != "step":
             t_candidates.append((pseries[0]["times"][-1], f"last particle frame ({pseries[0]['time_source']})"))
         if t_candidates:
             t, src = max(t_candidates)
@@ -172,7 +172,7 @@ def postprocess(case_dir, example=None, fields=True, quiet=True):
     except Exception as e:
         frames = None
         notes.append(f"particle numbers: {type(e).__name__}: {e}")
-    if fseries is None and frames:
+    if fseries is None and frames and "packing_fraction" not in scene:
         try:
             pk = summary.packing(case, frames)
             if pk:
@@ -185,7 +185,11 @@ def postprocess(case_dir, example=None, fields=True, quiet=True):
                  "fields, cross-section at mid-track (cell resolution)")
         except Exception as e:
             notes.append(f"bead geometry: {type(e).__name__}: {e}")
-    # the scene's numbers replace the generic ones
+    # the scene's numbers replace the generic ones (same names too: the scene defines them)
+    for k, v in scene.items():
+        if k in s and k not in ("case", "example"):
+            s[k] = v
+            sources[k] = f"the example's analysis (summary.json {k})"
     for key, cands in summary.SCENE_KEYS.items():
         for skey, factor in cands:
             v = scene.get(skey)
@@ -194,10 +198,14 @@ def postprocess(case_dir, example=None, fields=True, quiet=True):
                 sources[key] = f"the example's analysis (summary.json {skey})"
                 break
 
+    labelled = {k for k, _, _ in summary.LABELS}
+    for k in scene:
+        if k in labelled and k not in sources:
+            sources[k] = f"the example's analysis (summary.json {k})"
     s["postprocess_seconds"] = round(time.time() - t_start, 2)
     out = dict(_clean(scene))
     out.update(_clean(s))
-    out[summary.MARK] = _clean({"scene_keys": sorted(k for k in scene if k not in s), "sources": sources,
+    out[summary.MARK] = _clean({"scene_keys": sorted(scene), "sources": sources,
                                 "files": files, "notes": notes})
     with open(os.path.join(case, "summary.json.tmp"), "w") as f:
         json.dump(out, f, indent=1)

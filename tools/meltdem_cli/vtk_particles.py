@@ -136,16 +136,14 @@ def step_time_map(case):
         if "Step" in w and "Time" in w:
             cols = (w.index("Step"), w.index("Time"), len(w))
             continue
-        if cols and len(w) == cols[2]:
+        # a thermo row: as many numbers as the header has columns (warnings in between are skipped)
+        if cols and len(w) == cols[2] and w[0].isdigit():
             try:
-                s, t = int(float(w[cols[0]])), float(w[cols[1]])
+                s, t = int(w[cols[0]]), float(w[cols[1]])
             except ValueError:
-                cols = None if not w[0].lstrip("-").replace(".", "").isdigit() else cols
                 continue
             steps.append(s)
             times.append(t)
-        elif cols and w and not w[0].lstrip("-").isdigit():
-            cols = None
     if len(steps) < 2:
         return None
     s, t = np.array(steps), np.array(times)
