@@ -162,7 +162,7 @@ class Reporter:
             eta = (now - self.start) * (1 - frac) / frac
             if dw > 5 and self.p.t > t0 and self.p.t_end:
                 eta = (self.p.t_end - self.p.t) * dw / (self.p.t - t0)
-        return line(self.p.t, self.p.t_end, rate_steps, eta)
+        return line(self.p.t, self.p.t_end, rate_steps, None if eta is None else max(eta, 0.0))
 
     def update(self, final=False):
         if self.p.poll():

@@ -398,6 +398,9 @@ def run(target, case=None, np_=1, resume=False, size="ci", check_first=True, ana
         _, subs = run_scene(name, case, np_)
         for s in subs:
             postprocess(os.path.join(case, s), example=name)
+        if analyse:
+            say(f"analysing: {name}/scene.py analyse (log.analyse)")
+            ex.analyse(name, case)
     else:
         if check_first:
             rep, kind = chk.check(case)
