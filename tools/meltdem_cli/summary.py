@@ -369,7 +369,9 @@ def write_markdown(path, s):
     fl = s[MARK].get("files", {})
     pv = [fl[k] for k in ("fields_pvd", "particles_pvd") if k in fl]
     if pv:
-        head += f"ParaView: open {' and '.join(pv)}" + (" together" if len(pv) > 1 else "") + ". "
+        head += f"ParaView: open {' and '.join(pv)}" + (" together" if len(pv) > 1 else "") + (
+            " (particles as spheres: Glyph, type Sphere, scale array diameter, factor 1). " if "particles_pvd" in fl
+            else ". ")
     pngs = [v for k, v in fl.items() if k.endswith("_png")]
     if pngs:
         head += "Plots: " + ", ".join(pngs) + ". "

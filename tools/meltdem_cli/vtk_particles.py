@@ -62,7 +62,7 @@ def read_frames(path):
                 if frames:   # the last frame of a dump being written: skip it
                     break
                 raise ValueError(f"{path}: frame at step {cur.get('step')} has {len(rows)} of {na} atoms")
-            data = np.array([r.split() for r in rows], dtype=float).reshape(na, len(cols))
+            data = np.array(" ".join(rows).split(), dtype=float).reshape(na, len(cols))
             cur.update(columns=cols, data=data)
             frames.append(cur)
             cur = {"step": None}
