@@ -296,8 +296,11 @@ def run_dem(case, np_, resume):
     if np_ > 1:
         cmd = mpirun(np_) + cmd
     runs = lmp_in.runs()
+    halt = lmp_in.fixes("halt")
     say(f"running meltdem-lmp -in {inp} on {np_} rank(s)"
-        + (f", {sum(runs)} steps" if runs else "") + " (log.lammps)")
+        + (f", {'at most ' if halt else ''}{sum(runs)} steps" if runs else "")
+        + (f" (fix {halt[0][1][1]} halt ends it when its condition is met: the ETA is an upper bound)" if halt else "")
+        + " (log.lammps)")
     rc, wall = launch(cmd, case, "out.lammps", LammpsProgress(os.path.join(case, "out.lammps"), lmp_in.timestep(),
                                                                      runs))
     with open(os.path.join(case, "wall_seconds"), "w") as f:
