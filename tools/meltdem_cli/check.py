@@ -271,6 +271,11 @@ def check_foam(case, rep):
         if fd.value(tp, "sigma") is None:
             rep.bad("constant/transportProperties", "sigma missing")
         rep.ok("constant/transportProperties: phases, nu, rho, sigma")
+    turb = _read(case, "constant/turbulenceProperties", rep)
+    if turb is not None:
+        if fd.word(turb, "simulationType") is None:
+            rep.bad("constant/turbulenceProperties", "simulationType missing (laminar)")
+        rep.ok("constant/turbulenceProperties: simulationType")
     g = _read(case, "constant/g", rep)
     if g is not None:
         dims = fd.value(g, "dimensions")

@@ -8,7 +8,9 @@ ERROR line that names the file and the entry:
     laser path end outside    -> constant/meltdemProperties: laser.end of the path ... outside
     mesh outside the box      -> in.particles: LAMMPS box ... does not contain the mesh box
     metal.k deleted           -> constant/meltdemProperties: metal.k missing
-    0/U in km/h dimensions    -> 0/U: dimensions
+    0/U in m (not m/s)        -> 0/U: dimensions ... not the SI dimensions of U
+    latent deleted            -> in.particles: ... fix melt powder/melt: keyword(s) latent missing
+    transportProperties gone  -> constant/transportProperties: file missing
     DEM: read_data missing    -> in.pour: read_data ...: file missing
 """
 import os
@@ -93,6 +95,8 @@ broken("0/U dimensions not SI", ded,
 broken("powder/melt keyword missing", ded,
        lambda c: sub(os.path.join(c, "in.particles"), r" latent \S+", ""),
        ["in.particles:", "powder/melt", "latent"])
+broken("transportProperties deleted", ded, lambda c: os.remove(os.path.join(c, "constant/transportProperties")),
+       ["constant/transportProperties:", "file missing"])
 broken("DEM read_data file missing", pour,
        lambda c: sub(os.path.join(c, "in.pour"), r"^create_box.*$", "read_data grains.data"),
        ["in.pour:", "read_data grains.data: file missing"])
