@@ -133,8 +133,10 @@ def cross_section(centres, fields, trk):
     liquid fraction or None, the slice's along-track position). Cells: the layer of cell
     centres nearest to the track's middle."""
     axis, up = trk["axis"], trk["up"]
-    across = np.cross(axis, up)        # x along, y up -> z across (right-handed)
+    across = np.cross(axis, up)
     across /= np.linalg.norm(across)
+    if across[np.argmax(np.abs(across))] < 0:   # along a world axis: its positive direction
+        across = -across
     mid = 0.5 * (trk["start"] + trk["end"])
     s = (centres - mid) @ axis
     layers = np.unique(np.round(s, 9))          # 1 nm: cell centres of one layer agree to that
@@ -147,38 +149,70 @@ def cross_section(centres, fields, trk):
     return u, v, a, lf, float(mid @ axis + s0)
 
 
+def _length_unit(extent):
+    return (1e3, "mm") if extent > 2e-3 else (1e6, "um")
+
+
+def _time_text(t):
+    if t >= 1e-2:
+        return f"{t:.4g} s"
+    if t >= 1e-5:
+        return f"{t * 1e3:.4g} ms"
+    return f"{t * 1e6:.4g} us"
+
+
 def bead_profile(path, centres, fields, trk, time, tmax_lf=None):
     """Metal fraction on the cross-section of the track at its middle, last written time; the
     alpha = 1/2 contour (surface) and, when given, the fused zone (tmax_lf: per cell of the
-    section the largest liquid fraction the cell reached while metal, contour 1/2)."""
+    section the largest liquid fraction the cell reached while metal, contour 1/2). Zoomed to the
+    bead: the cells fused or partly metal, with a margin of their own size."""
     if trk is None or "alpha.metal" not in fields:
         return None
     u, v, a, lf, pos = cross_section(centres, fields, trk)
     if len(u) < 4:
         return None
-    fig, ax = plt.subplots(figsize=(7, 4.6))
     uu, vv = np.unique(np.round(u, 9)), np.unique(np.round(v, 9))
+    # the section's outer cell faces (centres +- half the end cells)
+    ulo = u.min() - (uu[1] - uu[0]) / 2 if len(uu) > 1 else u.min()
+    uhi = u.max() + (uu[-1] - uu[-2]) / 2 if len(uu) > 1 else u.max()
+    vlo = v.min() - (vv[1] - vv[0]) / 2 if len(vv) > 1 else v.min()
+    vhi = v.max() + (vv[-1] - vv[-2]) / 2 if len(vv) > 1 else v.max()
+    busy = (a > 0.01) & (a < 0.99)
+    if tmax_lf is not None:
+        busy |= tmax_lf >= 0.5
+    if busy.any():
+        box = [u[busy].min(), u[busy].max(), v[busy].min(), v[busy].max()]
+        m = max(box[1] - box[0], box[3] - box[2], 1e-12)
+        box = [max(box[0] - m, ulo), min(box[1] + m, uhi), max(box[2] - m, vlo), min(box[3] + m, vhi)]
+    else:
+        box = [ulo, uhi, vlo, vhi]
+    f, unit = _length_unit(max(box[1] - box[0], box[3] - box[2]))
+    fig, ax = plt.subplots(figsize=(7, 4.6))
+    drawn_fused = False
     if len(uu) * len(vv) == len(u):
         iu = np.searchsorted(uu, np.round(u, 9))
         iv = np.searchsorted(vv, np.round(v, 9))
         A = np.full((len(vv), len(uu)), np.nan)
         A[iv, iu] = a
-        im = ax.pcolormesh(uu * 1e6, vv * 1e6, A, shading="nearest", cmap="viridis", vmin=0, vmax=1)
-        ax.contour(uu * 1e6, vv * 1e6, A, levels=[0.5], colors="w", linewidths=1.5)
+        im = ax.pcolormesh(uu * f, vv * f, A, shading="nearest", cmap="viridis", vmin=0, vmax=1)
+        ax.contour(uu * f, vv * f, A, levels=[0.5], colors="w", linewidths=1.5)
         if tmax_lf is not None:
             L = np.full((len(vv), len(uu)), np.nan)
             L[iv, iu] = tmax_lf
             if np.nanmax(L) >= 0.5:
-                ax.contour(uu * 1e6, vv * 1e6, L, levels=[0.5], colors="r", linewidths=1.2, linestyles="--")
+                ax.contour(uu * f, vv * f, L, levels=[0.5], colors="r", linewidths=1.2, linestyles="--")
+                drawn_fused = True
     else:
-        im = ax.tricontourf(u * 1e6, v * 1e6, a, levels=np.linspace(0, 1, 11), cmap="viridis")
+        im = ax.tricontourf(u * f, v * f, a, levels=np.linspace(0, 1, 11), cmap="viridis")
     fig.colorbar(im, ax=ax, label="metal fraction alpha.metal")
+    ax.set_xlim(box[0] * f, box[1] * f)
+    ax.set_ylim(box[2] * f, box[3] * f)
     ax.set_aspect("equal")
-    ax.set_xlabel("across the track [um]")
-    ax.set_ylabel("up (against the beam) [um]")
-    ax.set_title(f"bead cross-section at {pos * 1e6:.0f} um along the track, t = {time * 1e6:.1f} us"
-                 + ("\n(white: surface alpha = 1/2; red dashed: fused, max liquid fraction = 1/2)"
-                    if tmax_lf is not None else ""), fontsize=9)
+    ax.set_xlabel(f"across the track [{unit}]")
+    ax.set_ylabel(f"up (against the beam) [{unit}]")
+    ax.set_title(f"bead cross-section at {pos * f:.4g} {unit} along the track, t = {_time_text(time)}"
+                 + ("\n(white: surface alpha = 1/2; red dashed: fused, liquid fraction reached 1/2)"
+                    if drawn_fused else "\n(white: surface alpha = 1/2)"), fontsize=9)
     fig.tight_layout()
     fig.savefig(path, dpi=110)
     plt.close(fig)
