@@ -13,6 +13,16 @@ FLOOR = 1e-18   # lowest |relative error| shown: below double round-off
 COMPONENTS = (("mass", "mass", "C0"), ("enthalpy", "energy (enthalpy)", "C3"), ("mom", "momentum", "C2"))
 
 
+def _time_unit(t):
+    """(factor, unit) for a time axis reaching t [s]."""
+    t = float(np.max(t)) if np.size(t) else 0.0
+    if t >= 0.1:
+        return 1.0, "s"
+    if t >= 1e-4:
+        return 1e3, "ms"
+    return 1e6, "us"
+
+
 def _abs_log(v):
     v = np.abs(np.asarray(v, float))
     return np.where(v > 0, v, np.nan)
@@ -35,8 +45,9 @@ def balances(path, led=None, bal=None):
     if led is None and bal is None:
         return None
     fig, axes = plt.subplots(1, 2, figsize=(11, 4.2), sharex=True)
+    tf, tu = _time_unit(led["time"] if led is not None else bal["time"])
     if led is not None and len(led) > 1:
-        t = led["time"][1:] * 1e6
+        t = led["time"][1:] * tf
         for comp, label, colour in COMPONENTS:
             for kind, style, tag in (("system_error", "-", "system"), ("continuum_error", "--", "continuum")):
                 v = _component(led[1:], comp, kind)
@@ -48,7 +59,7 @@ def balances(path, led=None, bal=None):
         axes[0].set_title("per step: |(sources - change) / total| (ledger)")
         axes[1].set_title("cumulative since the start (ledger)")
     elif bal is not None:
-        t = bal["time"] * 1e6
+        t = bal["time"] * tf
         names = bal.dtype.names
         for col, label, colour in (("massErrorRel", "mass", "C0"), ("enthalpyErrorRel", "energy (enthalpy)", "C3"),
                                    ("momentumErrorRel", "momentum", "C2")):
@@ -62,7 +73,7 @@ def balances(path, led=None, bal=None):
         lo, hi = ax.get_ylim()
         if lo < FLOOR < hi:       # round-off zeros (1e-50) would squeeze the scale
             ax.set_ylim(bottom=FLOOR)
-        ax.set_xlabel("time [us]")
+        ax.set_xlabel(f"time [{tu}]")
         ax.set_ylabel("|relative error|")
         ax.grid(True, which="both", alpha=0.3)
         if ax.lines:
@@ -79,8 +90,9 @@ def melted_mass(path, led=None, pcsv=None):
     if led is None and pcsv is None:
         return None
     fig, ax = plt.subplots(figsize=(7, 4.2))
+    tf, tu = _time_unit(led["time"] if led is not None else pcsv["time"])
     if led is not None:
-        t = led["time"] * 1e6
+        t = led["time"] * tf
         ax.plot(t, np.cumsum(led["mass_exchange"]), "C3", lw=2, label="metal handed to the continuum (ledger)")
         ax.plot(t, led["mass_particles"], "C0", lw=1, label="metal in particles")
         ax.plot(t, led["mass_continuum"] - led["mass_continuum"][0], "C1", lw=1, label="continuum metal gained")
@@ -89,8 +101,8 @@ def melted_mass(path, led=None, pcsv=None):
         if np.any(led["mass_cumulative_lost"]):
             ax.plot(t, led["mass_cumulative_lost"], "C7", lw=1, label="left the mesh (lost)")
     if pcsv is not None and "mass_melted" in pcsv.dtype.names:
-        ax.plot(pcsv["time"] * 1e6, np.cumsum(pcsv["mass_melted"]), "k:", lw=1.5, label="molten (fix powder/melt)")
-    ax.set_xlabel("time [us]")
+        ax.plot(pcsv["time"] * tf, np.cumsum(pcsv["mass_melted"]), "k:", lw=1.5, label="molten (fix powder/melt)")
+    ax.set_xlabel(f"time [{tu}]")
     ax.set_ylabel("mass [kg]")
     ax.grid(True, alpha=0.3)
     ax.legend(fontsize=7)
@@ -108,17 +120,18 @@ def absorbed_power(path, bal=None, pcsv=None, eta_p=None):
     if not (has_c or has_p):
         return None
     fig, ax = plt.subplots(figsize=(7, 4.2))
+    tf, tu = _time_unit(bal["time"] if has_c else pcsv["time"])
     if has_c:
-        ax.plot(bal["time"] * 1e6, bal["laserPower"], "C1", lw=1, label="continuum")
+        ax.plot(bal["time"] * tf, bal["laserPower"], "C1", lw=1, label="continuum")
     if has_p:
-        ax.plot(pcsv["time"] * 1e6, pcsv["laser_heat"] / pcsv["dt"], "C0", lw=1, label="particles")
+        ax.plot(pcsv["time"] * tf, pcsv["laser_heat"] / pcsv["dt"], "C0", lw=1, label="particles")
     if has_c and has_p:
         t = pcsv["time"]
-        ax.plot(t * 1e6, np.interp(t, bal["time"], bal["laserPower"]) + pcsv["laser_heat"] / pcsv["dt"], "k", lw=1.5,
+        ax.plot(t * tf, np.interp(t, bal["time"], bal["laserPower"]) + pcsv["laser_heat"] / pcsv["dt"], "k", lw=1.5,
                 label="total")
     if eta_p:
         ax.axhline(eta_p, color="0.5", ls="--", lw=1, label="absorptivity x power")
-    ax.set_xlabel("time [us]")
+    ax.set_xlabel(f"time [{tu}]")
     ax.set_ylabel("absorbed laser power [W]")
     ax.grid(True, alpha=0.3)
     ax.legend(fontsize=7)
