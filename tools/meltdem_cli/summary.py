@@ -279,12 +279,37 @@ def fused_max(fields_series):
     return out
 
 
+def _crossing(f, c, level):
+    """(low, high) where the profile f over the sorted centres c crosses level, outermost on
+    each side of its maximum's connected run (linear interpolation; the outer face when the run
+    reaches the end); None when f stays below level."""
+    i = int(np.argmax(f))
+    if f[i] < level:
+        return None
+    lo = i
+    while lo > 0 and f[lo - 1] >= level:
+        lo -= 1
+    hi = i
+    while hi < len(f) - 1 and f[hi + 1] >= level:
+        hi += 1
+    if lo == 0:
+        left = c[0] - ((c[1] - c[0]) / 2 if len(c) > 1 else 0.0)
+    else:
+        left = c[lo - 1] + (level - f[lo - 1]) / (f[lo] - f[lo - 1]) * (c[lo] - c[lo - 1])
+    if hi == len(f) - 1:
+        right = c[-1] + ((c[-1] - c[-2]) / 2 if len(c) > 1 else 0.0)
+    else:
+        right = c[hi] + (f[hi] - level) / (f[hi] - f[hi + 1]) * (c[hi + 1] - c[hi])
+    return float(left), float(right)
+
+
 def bead_geometry(fields_series, trk):
     """Bead of a moving laser from the written fields, on the cross-section at the middle of the
-    track (cell resolution): width = widest extent across of the fused cells (liquid fraction
-    >= 1/2 while metal at some written time), penetration = initial surface minus the
-    centre of the lowest fused cell, height = highest metal column (sum alpha dv) minus the initial
-    one, at the last written time. fields_series: [(time, centres, fields)]."""
+    track: fused = liquid fraction reached 1/2 while metal at some written time (its 1/2
+    crossings interpolated linearly between cell centres); width = widest fused extent across,
+    penetration = initial metal surface (median column sum of alpha dv) minus the lowest fused
+    point, height = highest metal column at the last written time minus that surface.
+    fields_series: [(time, centres, fields)]."""
     from .plots import cross_section
     if trk is None or len(fields_series) < 2:
         return {}
@@ -313,18 +338,20 @@ def bead_geometry(fields_series, trk):
     h0 = faces[0] + dv @ A0            # metal surface height per column, start
     h1 = faces[0] + dv @ A1
     surface0 = float(np.median(h0))
-    fused = L >= 0.5
     out = {"bead_height_m": float(max(0.0, np.max(h1 - surface0)))}
-    if fused.any():
-        du = np.diff(np.concatenate([[uu[0] - (uu[1] - uu[0]) / 2], (uu[1:] + uu[:-1]) / 2,
-                                     [uu[-1] + (uu[-1] - uu[-2]) / 2]]))
-        widths = [float(np.sum(du[row])) for row in fused]
-        out["bead_width_m"] = max(widths)
-        jlow = int(np.nonzero(fused.any(axis=1))[0].min())
-        out["penetration_m"] = float(max(0.0, surface0 - vv[jlow]))
-    else:
-        out["bead_width_m"] = 0.0
-        out["penetration_m"] = 0.0
+    # fused extent: the liquid fraction's 1/2 crossings, linear between cell centres (a fused
+    # cell at the section's edge counts to its outer face)
+    width, low = 0.0, None
+    for j in range(len(vv)):
+        cr = _crossing(L[j, :], uu, 0.5)
+        if cr:
+            width = max(width, cr[1] - cr[0])
+    for i in range(len(uu)):
+        cr = _crossing(L[:, i], vv, 0.5)
+        if cr:
+            low = cr[0] if low is None else min(low, cr[0])
+    out["bead_width_m"] = float(width)
+    out["penetration_m"] = float(max(0.0, surface0 - low)) if low is not None else 0.0
     out["bead_section_time_s"] = float(tl)
     return out
 

@@ -194,6 +194,26 @@ def decomposed(work, case, a_foam, nc):
     return ok
 
 
+def moving_laser(work, case):
+    """The coupled case's fields with its laser dictionary given a velocity (the fields stay those
+    of the fixed beam): the track branch (cross-section at mid-track, bead profile, bead numbers)
+    runs on real fields; the numbers are checked for presence and range only."""
+    tcase = os.path.join(work, "pbf-track")
+    shutil.copytree(case, tcase, ignore=shutil.ignore_patterns("VTK", "plots", "summary.*", "pbf.json"))
+    mp = os.path.join(tcase, "constant", "meltdemProperties")
+    txt = open(mp).read()
+    txt = re.sub(r"(\n\s*position\s*\()([^ ]+)", r"\n    velocity (5 0 0);\n    tStart 2e-6;\1 4e-05", txt, count=1)
+    open(mp, "w").write(txt)
+    s = post.postprocess(tcase)
+    png = os.path.join(tcase, "plots", "bead_profile.png")
+    ok = report(TEST, "moving laser: plots/bead_profile.png is a PNG", is_png(png), True, "exact", is_png(png))
+    bad = [k for k in ("bead_width_m", "bead_height_m", "penetration_m")
+           if not (isinstance(s.get(k), float) and 0.0 <= s[k] <= 140e-6)]
+    ok &= report(TEST, "moving laser: bead numbers missing or outside [0, domain height]", ",".join(bad) or "none",
+                 "none", "exact", not bad)
+    return ok
+
+
 def dem_only(work):
     case = os.path.join(work, "pour")
     os.makedirs(case)
@@ -231,6 +251,7 @@ def main():
     work = tempfile.mkdtemp(prefix="meltdem-post-")
     ok, case, a_foam, nc = coupled(work)
     ok &= decomposed(work, case, a_foam, nc)
+    ok &= moving_laser(work, case)
     ok &= dem_only(work)
     return fc.finish(ok, work, keep)
 
