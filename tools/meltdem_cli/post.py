@@ -182,7 +182,7 @@ def postprocess(case_dir, example=None, fields=True, quiet=True):
     if trk is not None and fields_series:
         try:
             _put(s, sources, summary.bead_geometry(fields_series, trk),
-                 "fields, cross-section at mid-track (cell resolution)")
+                 "fields, cross-section at mid-track")
         except Exception as e:
             notes.append(f"bead geometry: {type(e).__name__}: {e}")
     # the scene's numbers replace the generic ones (same names too: the scene defines them)
