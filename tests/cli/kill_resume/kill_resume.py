@@ -28,7 +28,7 @@ sys.path.insert(0, os.path.join(SRC, "tests", "support"))
 from meltdem_report import check_absolute, check_at_least, check_at_most, check_relative  # noqa: E402
 import foamcase as fc  # noqa: E402
 
-TEST = "cli.resume"
+TEST = "cli.kill_resume"
 END, WRITE = 9e-06, 3e-06
 FIRST = "3e-06"
 
