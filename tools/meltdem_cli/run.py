@@ -393,6 +393,8 @@ def run(target, case=None, np_=1, resume=False, size="ci", check_first=True, ana
             ex.build(name, case, size)
     else:
         case = os.path.abspath(target)
+        if size == "full":
+            say("--full applies to example names only: the case folder runs as it is")
     t_start = time.time()
     kind = chk.case_kind(case)
     if kind is None and name and os.path.isfile(os.path.join(ex.examples_dir(), name, "scene.py")):
