@@ -92,10 +92,14 @@ def failure_reason(case, log):
     for i, ln in enumerate(lines):
         if "FOAM FATAL" in ln:
             rest = [x.strip() for x in lines[i + 1:i + 8] if x.strip() and not x.strip().startswith(("From ", "in file"))]
-            return (rest[0] if rest else ln.strip())[:200]
+            return _clip(rest[0] if rest else ln.strip())
         if ln.startswith("ERROR") or " ERROR:" in ln:
-            return ln.strip()[:200]
+            return _clip(ln.strip())
     return ""
+
+
+def _clip(text, n=320):
+    return text if len(text) <= n else text[:n].rsplit(" ", 1)[0] + " ..."
 
 
 # --------------------------------------------------------------------------------- OpenFOAM case
@@ -250,13 +254,13 @@ def run_foam(case, np_, resume, rebuilt=False):
     cmd = [solver] if np_ == 1 else mpirun(np_) + [solver, "-parallel"]
     say(f"running {' '.join(cmd[-2:] if np_ > 1 else cmd[:1]).replace(bin_dir() + '/', '')} on {np_} rank(s), "
         f"t = {t_start:g} -> {t_end:g} s (log.meltdemFoam)")
-    rc, wall = launch(cmd, case, "log.meltdemFoam", FoamProgress(os.path.join(case, "log.meltdemFoam"),
-                                                                  t_end, t_start))
+    tracker = FoamProgress(os.path.join(case, "log.meltdemFoam"), t_end, t_start)
+    rc, wall = launch(cmd, case, "log.meltdemFoam", tracker)
     with open(os.path.join(case, "wall_seconds"), "w") as f:
         f.write(f"{wall:.1f} {np_}\n")
     if rc != 0:
         why = failure_reason(case, "log.meltdemFoam")
-        raise StepError(f"meltdemFoam failed (rc {rc}){': ' + why if why else ''}; read "
+        raise StepError(f"meltdemFoam failed (rc {rc}) at t = {tracker.t:g} s{': ' + why if why else ''}; read "
                         f"{os.path.join(case, 'log.meltdemFoam')}"
                         + (f" (resume: meltdem run {case} --resume)" if os.path.isdir(os.path.join(case, RESTART_DIR)) else ""))
     say(f"meltdemFoam finished in {wall:.0f} s wall")
