@@ -77,7 +77,14 @@ def foam_log(case):
 
 def wall_time(case):
     """(seconds, source) of the run: the solver's last ClockTime, else LAMMPS' 'Total wall time',
-    else None."""
+    else None. The wall_seconds file `meltdem run` and the scenes write comes first: it times the
+    whole job, and LAMMPS truncates its own to whole seconds."""
+    p = os.path.join(case, "wall_seconds")
+    if os.path.exists(p):
+        try:
+            return float(open(p).read().split()[0]), "wall_seconds (the whole job)"
+        except (ValueError, IndexError):
+            pass
     log = foam_log(case)
     if log:
         m = re.findall(r"ClockTime = (\S+) s", open(log, errors="replace").read())
