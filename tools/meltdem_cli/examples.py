@@ -5,7 +5,6 @@ import os
 import re
 import shutil
 import subprocess
-import sys
 
 KINDS = {"dem": "DEM-only", "coupled": "coupled", "continuum": "continuum-only"}
 
@@ -122,7 +121,7 @@ def build(name, case, size="ci", log=None):
             if f.startswith("in.") or f.endswith(".data"):
                 shutil.copy(os.path.join(src, f), os.path.join(case, f))
         return f"copied {name}'s LAMMPS input into {case}"
-    cmd = [sys.executable if sys.executable.startswith("/usr/bin/") else "/usr/bin/python3", scene,
+    cmd = ["/usr/bin/python3", scene,
            "build", case, f"--{size}"]
     logpath = log or os.path.join(case, "log.build")
     with open(logpath, "w") as f:
