@@ -95,6 +95,9 @@ def main(argv=None):
     except StepError as e:
         print(f"meltdem: ERROR: {e}", file=sys.stderr, flush=True)
         return 1
+    except BrokenPipeError:          # `meltdem list | head`
+        sys.stdout = open(os.devnull, "w")
+        return 0
     except KeyboardInterrupt:
         print("\nmeltdem: interrupted", file=sys.stderr)
         return 130
