@@ -111,21 +111,26 @@ def describe():
     return rows
 
 
-def build(name, case, size="ci", log=None):
-    """Build CASE from example NAME; returns the command line run (for the message)."""
+def build(name, case, size="ci"):
+    """Build CASE from example NAME (its scene.py build; powder-pour: the input copied); the
+    scene's output goes to CASE/log.build. Returns the command line run."""
     src = os.path.join(examples_dir(), name)
     scene = os.path.join(src, "scene.py")
-    os.makedirs(case, exist_ok=True)
     if not os.path.isfile(scene):
+        os.makedirs(case, exist_ok=True)
         for f in os.listdir(src):
             if f.startswith("in.") or f.endswith(".data"):
                 shutil.copy(os.path.join(src, f), os.path.join(case, f))
         return f"copied {name}'s LAMMPS input into {case}"
-    cmd = ["/usr/bin/python3", scene,
-           "build", case, f"--{size}"]
-    logpath = log or os.path.join(case, "log.build")
-    with open(logpath, "w") as f:
+    cmd = ["/usr/bin/python3", scene, "build", case, f"--{size}"]
+    # the scene creates CASE itself (some refuse a folder they did not write): log beside it first
+    parent = os.path.dirname(os.path.abspath(case))
+    os.makedirs(parent, exist_ok=True)
+    tmp = os.path.join(parent, f".meltdem-build-{os.path.basename(case)}.log")
+    with open(tmp, "w") as f:
         r = subprocess.run(cmd, stdout=f, stderr=subprocess.STDOUT, env=scene_env())
+    logpath = os.path.join(case, "log.build") if os.path.isdir(case) else os.path.join(parent, f"log.build.{name}")
+    shutil.move(tmp, logpath)
     if r.returncode != 0:
         raise StepError(f"building {name} failed (rc {r.returncode}): read {logpath}")
     return " ".join(cmd)
