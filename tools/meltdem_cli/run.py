@@ -255,7 +255,11 @@ def run_foam(case, np_, resume, rebuilt=False):
     say(f"running {' '.join(cmd[-2:] if np_ > 1 else cmd[:1]).replace(bin_dir() + '/', '')} on {np_} rank(s), "
         f"t = {t_start:g} -> {t_end:g} s (log.meltdemFoam)")
     tracker = FoamProgress(os.path.join(case, "log.meltdemFoam"), t_end, t_start)
-    rc, wall = launch(cmd, case, "log.meltdemFoam", tracker)
+    try:
+        rc, wall = launch(cmd, case, "log.meltdemFoam", tracker)
+    except KeyboardInterrupt:
+        say(f"interrupted at t = {tracker.t:g} s; continue from the last checkpoint with: meltdem run {case} --resume")
+        raise
     with open(os.path.join(case, "wall_seconds"), "w") as f:
         f.write(f"{wall:.1f} {np_}\n")
     if rc != 0:
