@@ -134,7 +134,30 @@ def _fmt(b):
     return "(" + " ".join(f"{x:.6g}" for x in b[0]) + ") - (" + " ".join(f"{x:.6g}" for x in b[1]) + ")"
 
 
-def check_lammps(case, rel, rep, mesh=None, coupled=False, overrides=None):
+def check_gravity(lmp, rel, g, rep):
+    """The particles' fix gravity equals constant/g (meltdemFoam stops otherwise, checkGravity)."""
+    from .lammps_input import _eval
+    gl = [0.0, 0.0, 0.0]
+    for n, w in lmp.fixes("gravity"):
+        mag = _eval(w[4]) if len(w) > 4 else None
+        if len(w) < 9 or w[5] != "vector" or mag is None:
+            rep.note(f"{rel}: line {n}: fix gravity style not checked ({' '.join(w[4:])})")
+            return
+        d = [_eval(x) for x in w[6:9]]
+        if None in d:
+            return
+        norm = sum(x * x for x in d) ** 0.5 or 1.0
+        gl = [gl[k] + mag * d[k] / norm for k in range(3)]
+    diff = sum((a - b) ** 2 for a, b in zip(gl, g)) ** 0.5
+    scale = max(sum(x * x for x in gl) ** 0.5, sum(x * x for x in g) ** 0.5)
+    if diff > 1e-9 * scale:
+        rep.bad(rel, f"fix gravity gives ({' '.join(f'{x:.6g}' for x in gl)}) m/s2 but constant/g is "
+                     f"({' '.join(f'{x:.6g}' for x in g)}): particles and continuum must feel the same gravity")
+    else:
+        rep.ok(f"{rel}: fix gravity = constant/g")
+
+
+def check_lammps(case, rel, rep, mesh=None, coupled=False, overrides=None, g=None):
     p = os.path.join(case, rel)
     if not os.path.isfile(p):
         rep.bad(rel, "file missing (LAMMPS input)")
@@ -162,6 +185,8 @@ def check_lammps(case, rel, rep, mesh=None, coupled=False, overrides=None):
             rep.ok(f"{rel}: fix powder/melt has cp Tmelt latent temp")
     if coupled and not melts:
         rep.bad(rel, "no fix powder/melt (the coupling exchanges through it)")
+    if coupled and g is not None:
+        check_gravity(lmp, rel, g, rep)
     if mesh is not None:
         box, src = lmp.box()
         if box is None:
@@ -277,11 +302,13 @@ def check_foam(case, rep):
             rep.bad("constant/turbulenceProperties", "simulationType missing (laminar)")
         rep.ok("constant/turbulenceProperties: simulationType")
     g = _read(case, "constant/g", rep)
+    gvec = None
     if g is not None:
         dims = fd.value(g, "dimensions")
         if dims and isinstance(dims[0], list) and " ".join(dims[0][:7]) != G_DIMENSIONS:
             rep.bad("constant/g", f"dimensions [{' '.join(dims[0])}] are not m/s^2 [{G_DIMENSIONS}]")
-        if fd.vector((fd.value(g, "value") or [None])[0]) is None:
+        gvec = fd.vector((fd.value(g, "value") or [None])[0])
+        if gvec is None:
             rep.bad("constant/g", "value missing or not (x y z)")
         rep.ok("constant/g: dimensions, value")
 
@@ -353,7 +380,7 @@ def check_foam(case, rep):
             rep.bad(rel, f"particles.distribution {dist} unknown (centre, neighbours, overlap)")
         inp = fd.word(pd, "lammpsInput")
         if inp:
-            check_lammps(case, inp, rep, mesh, coupled=True)
+            check_lammps(case, inp, rep, mesh, coupled=True, g=gvec)
 
 
 def check(case):

@@ -11,6 +11,7 @@ ERROR line that names the file and the entry:
     0/U in m (not m/s)        -> 0/U: dimensions ... not the SI dimensions of U
     latent deleted            -> in.particles: ... fix melt powder/melt: keyword(s) latent missing
     transportProperties gone  -> constant/transportProperties: file missing
+    Mars gravity for grains   -> in.particles: fix gravity gives ... but constant/g is ...
     DEM: read_data missing    -> in.pour: read_data ...: file missing
 """
 import os
@@ -95,6 +96,9 @@ broken("0/U dimensions not SI", ded,
 broken("powder/melt keyword missing", ded,
        lambda c: sub(os.path.join(c, "in.particles"), r" latent \S+", ""),
        ["in.particles:", "powder/melt", "latent"])
+broken("gravity mismatch", ded,
+       lambda c: sub(os.path.join(c, "in.particles"), r"^fix gravity all gravity 9.81", "fix gravity all gravity 3.71"),
+       ["in.particles:", "fix gravity gives", "constant/g"])
 broken("transportProperties deleted", ded, lambda c: os.remove(os.path.join(c, "constant/transportProperties")),
        ["constant/transportProperties:", "file missing"])
 broken("DEM read_data file missing", pour,
