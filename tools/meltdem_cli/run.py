@@ -54,7 +54,8 @@ def tool(cmd, case, log):
     with open(os.path.join(case, log), "w") as f:
         r = subprocess.run(cmd, cwd=case, stdout=f, stderr=subprocess.STDOUT, env=dict(env(), PWD=case))
     if r.returncode != 0:
-        raise StepError(f"{cmd[0]} failed (rc {r.returncode}): read {os.path.join(case, log)}")
+        why = failure_reason(case, log)
+        raise StepError(f"{cmd[0]} failed (rc {r.returncode}){': ' + why if why else ''}; read {os.path.join(case, log)}")
 
 
 def launch(cmd, case, log, tracker):
