@@ -115,7 +115,9 @@ class LammpsInput:
         return _eval(t[-1][1][1]) if t else None
 
     def runs(self):
-        return [int(float(w[1])) for _, w in self.find("run") if len(w) > 1 and _eval(w[1]) is not None]
+        """Step counts of the run commands in order; a 'run N upto' is given as -N (up to step N)."""
+        return [int(_eval(w[1])) * (-1 if "upto" in w[2:] else 1)
+                for _, w in self.find("run") if len(w) > 1 and _eval(w[1]) is not None]
 
 
 def data_box(path):

@@ -117,6 +117,8 @@ class LammpsProgress:
                     continue
                 if self.run_start is None:
                     self.run_start = step
+                    if self.run_len is not None and self.run_len < 0:   # run N upto
+                        self.run_len = max(-self.run_len - step, 0)
                     self.t0 = float(w[self.t_col]) if self.t_col is not None else step * (self.dt or 0)
                 if self.step is not None and step > self.step:
                     self.steps += step - self.step

@@ -307,7 +307,7 @@ def run_dem(case, np_, resume):
     runs = lmp_in.runs()
     halt = lmp_in.fixes("halt")
     say(f"running meltdem-lmp -in {inp} on {np_} rank(s)"
-        + (f", {'at most ' if halt else ''}{sum(runs)} steps" if runs else "")
+        + (f", {'at most ' if halt else ''}{sum(r for r in runs if r > 0)} steps" if runs and min(runs) >= 0 else "")
         + (f" (fix {halt[0][1][1]} halt ends it when its condition is met: the ETA is an upper bound)" if halt else "")
         + " (log.lammps)")
     rc, wall = launch(cmd, case, "out.lammps", LammpsProgress(os.path.join(case, "out.lammps"), lmp_in.timestep(),
