@@ -200,7 +200,9 @@ def clear_earlier_output(case, start):
     run rewrites them; stale ones would be read back by --resume and the post-processing)."""
     later = [t for t in fd.time_dirs(case) if float(t) > start]
     rdir = os.path.join(case, RESTART_DIR)
-    procs = processor_dirs(case)
+    # processor folders are only output when the start fields are in the case itself
+    has_start = any(float(t) == start for t in fd.time_dirs(case))
+    procs = processor_dirs(case) if has_start else []
     if later or os.path.isdir(rdir) or procs:
         extra = ([RESTART_DIR + "/"] if os.path.isdir(rdir) else []) + (["processor*/"] if procs else [])
         say(f"earlier output in {case} ({len(later)} time folder(s) after {start:g}"
