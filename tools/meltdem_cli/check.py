@@ -93,8 +93,11 @@ def _read(case, rel, rep, required=True):
         return None
 
 
-def _need(d, keys, rel, rep, prefix=""):
-    """Positive-number entries (as meltdemProperties::readPositive); returns those present."""
+NON_NEGATIVE = {"L", "beta", "power"}   # may be 0 (meltdemProperties::readPositive allowZero)
+
+
+def _need(d, keys, rel, rep, prefix="", positive=False):
+    """Number entries (positive ones as meltdemProperties::readPositive); returns those present."""
     got = {}
     for k in keys:
         v = fd.number(d, k)
@@ -102,6 +105,8 @@ def _need(d, keys, rel, rep, prefix=""):
             rep.bad(rel, f"{prefix}{k} missing")
         elif v is None:
             rep.bad(rel, f"{prefix}{k} is not a number ({' '.join(map(str, d[k]))})")
+        elif positive and (v < 0 or (v == 0 and k not in NON_NEGATIVE)):
+            rep.bad(rel, f"{prefix}{k} = {v:g} must be {'non-negative' if k in NON_NEGATIVE else 'positive'}")
         else:
             got[k] = v
     return got
@@ -115,6 +120,9 @@ def mesh_box(case, rep):
         if b:
             return b, "constant/polyMesh/points"
     rel = "system/blockMeshDict"
+    if not os.path.isfile(os.path.join(case, rel)) and os.path.isdir(os.path.join(case, "processor0", "constant", "polyMesh")):
+        rep.note("decomposed mesh only (processor*/constant/polyMesh): mesh box not checked")
+        return None, None
     d = _read(case, rel, rep, required=not os.path.isfile(pts))
     if d is None:
         return None, None
@@ -210,7 +218,9 @@ def check_laser(d, mesh, rep, rel):
     if not isinstance(las, dict):
         rep.bad(rel, "laser: sub-dictionary missing (physics laser on)")
         return
-    _need(las, LASER, rel, rep, "laser.")
+    got = _need(las, LASER, rel, rep, "laser.", positive=True)
+    if got.get("absorptivity", 0) > 1:
+        rep.bad(rel, f"laser.absorptivity = {got['absorptivity']:g} must be in [0, 1]")
     if mesh is None:
         return
     lo, hi = mesh
@@ -330,7 +340,7 @@ def check_foam(case, rep):
                 if not isinstance(md.get(sub), dict):
                     rep.bad(rel, f"{sub}: sub-dictionary missing (physics energy on)")
                     continue
-                got = _need(md[sub], keys, rel, rep, f"{sub}.")
+                got = _need(md[sub], keys, rel, rep, f"{sub}.", positive=True)
                 if "Tsolidus" in got and "Tliquidus" in got and not got["Tliquidus"] > got["Tsolidus"]:
                     rep.bad(rel, f"metal.Tsolidus ({got['Tsolidus']:g}) must be below Tliquidus ({got['Tliquidus']:g})")
             rep.ok(f"{rel}: metal {{{' '.join(METAL)}}}, gas {{{' '.join(GAS)}}}")

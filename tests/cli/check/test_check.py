@@ -12,6 +12,7 @@ ERROR line that names the file and the entry:
     latent deleted            -> in.particles: ... fix melt powder/melt: keyword(s) latent missing
     transportProperties gone  -> constant/transportProperties: file missing
     Mars gravity for grains   -> in.particles: fix gravity gives ... but constant/g is ...
+    gas.k < 0                 -> constant/meltdemProperties: gas.k = -0.026 must be positive
     DEM: read_data missing    -> in.pour: read_data ...: file missing
 """
 import os
@@ -96,6 +97,9 @@ broken("0/U dimensions not SI", ded,
 broken("powder/melt keyword missing", ded,
        lambda c: sub(os.path.join(c, "in.particles"), r" latent \S+", ""),
        ["in.particles:", "powder/melt", "latent"])
+broken("negative gas conductivity", ded,
+       lambda c: sub(os.path.join(c, "constant/meltdemProperties"), r"^gas \{ cp (\S+); k \S+; \}", r"gas { cp \1; k -0.026; }"),
+       ["constant/meltdemProperties:", "gas.k = -0.026 must be positive"])
 broken("gravity mismatch", ded,
        lambda c: sub(os.path.join(c, "in.particles"), r"^fix gravity all gravity 9.81", "fix gravity all gravity 3.71"),
        ["in.particles:", "fix gravity gives", "constant/g"])
