@@ -10,7 +10,7 @@
     + the particles', its balance errors the ledger's worst;
 (b) decomposed: the same case decomposed at its last time with only time 0 in the case folder:
     fields.pvd from the processor folders (mpirun foamToVTK -parallel), same cells and metal;
-(c) DEM only: examples/powder-pour/in.pour with a dump (in.pour writes none) for 0.2 ms: one
+(c) DEM only: examples/powder-pour/in.pour with a dump without ITEM: TIME (its own removed) for 0.2 ms: one
     .vtp per frame with the frame's particles, times step x timestep, a packing fraction.
 """
 import glob
@@ -218,6 +218,8 @@ def dem_only(work):
     case = os.path.join(work, "pour")
     os.makedirs(case)
     txt = open(os.path.join(SRC, "examples", "powder-pour", "in.pour")).read()
+    # in.pour's own dump carries ITEM: TIME; this one has none (frame times from the log's steps)
+    txt = re.sub(r"^dump(_modify)?\s+pour\b.*\n", "", txt, flags=re.M)
     txt = re.sub(r"^run ", "dump            d all custom 2000 pour.dump id type x y z vx vy vz radius mass\nrun ",
                  txt, flags=re.M)
     open(os.path.join(case, "in.pour"), "w").write(txt)
