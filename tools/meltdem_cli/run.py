@@ -3,7 +3,7 @@
     example name -> scene.py build CASE --ci|--full (powder-pour: in.pour copied)
     check (stop on errors) -> mesh (blockMesh when system/blockMeshDict and no polyMesh)
     -> decompose (--np > 1) -> ONE job: [mpirun -np N] meltdemFoam [-parallel] | meltdem-lmp -in IN
-    -> reconstructPar (N > 1) -> post-processing (meltdem_cli.post) -> scene.py analyse (examples)
+    -> reconstructPar (N > 1) -> scene.py analyse (examples) -> post-processing (meltdem_cli.post)
 
 --resume (coupled/continuum cases): the latest time T with CASE/meltdemRestart/T/complete and the
 OpenFOAM time folder (CASE/T or processor0/T); system/controlDict gets startFrom startTime;
@@ -373,20 +373,6 @@ def postprocess(case, example=None):
                         f"retry with: meltdem post {case}")
 
 
-def merge_summary(case, scene_summary_path, post_summary):
-    """summary.json keeps the scene's numbers; the post-processor's are added under 'post'."""
-    if not post_summary:
-        return
-    p = scene_summary_path
-    try:
-        s = json.load(open(p))
-    except (OSError, ValueError):
-        return
-    if isinstance(s, dict) and "post" not in s and isinstance(post_summary, dict):
-        s["post"] = post_summary
-        json.dump(s, open(p, "w"), indent=1, default=str)
-
-
 # ------------------------------------------------------------------------------------- main
 def run(target, case=None, np_=1, resume=False, size="ci", check_first=True, analyse=True):
     """Returns 0; raises StepError with the one-line reason."""
@@ -429,12 +415,12 @@ def run(target, case=None, np_=1, resume=False, size="ci", check_first=True, ana
             run_foam(case, np_, resume, rebuilt=bool(name) and not resume)
         else:
             run_dem(case, np_, resume)
-        post = postprocess(case, example=name)
+        # the scene's analysis first: post-processing then takes its numbers (bead, efficiency,
+        # packing) from the summary.json it wrote instead of running the analysis a second time
         if name and analyse and os.path.isfile(os.path.join(ex.examples_dir(), name, "scene.py")):
             say(f"analysing: {name}/scene.py analyse (log.analyse)")
-            log = ex.analyse(name, case)
-            if log:
-                merge_summary(case, os.path.join(case, "summary.json"), post)
+            ex.analyse(name, case)
+        postprocess(case, example=name)
     say(f"done in {time.time() - t_start:.0f} s: {case}")
     for f in ("summary.md", "summary.json"):
         if os.path.isfile(os.path.join(case, f)):

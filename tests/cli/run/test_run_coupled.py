@@ -2,7 +2,7 @@
 a laser melt pool): exit 0, blockMesh and the solver run to endTime (log.meltdemFoam 'End'), the
 progress line ends at endTime, a checkpoint at the last write time (meltdemRestart/<T>/complete),
 the post-processor's ParaView series and the scene's summary.json (with the post-processor's
-numbers under 'post')."""
+numbers merged into it)."""
 import json
 import os
 import re
@@ -38,8 +38,8 @@ try:
     s = json.load(open(os.path.join(case, "summary.json")))
 except (OSError, ValueError):
     s = {}
-ok &= check_absolute(T, "summary.json: scene analysis (fluid_steps) and post-processing ('post')",
-                     int("fluid_steps" in s and isinstance(s.get("post"), dict)), 1, 0)
+ok &= check_absolute(T, "summary.json: scene analysis (fluid_steps) and post-processing (meltdem_post) in one",
+                     int("fluid_steps" in s and isinstance(s.get("meltdem_post"), dict)), 1, 0)
 if ok:
     shutil.rmtree(work, ignore_errors=True)
 else:
