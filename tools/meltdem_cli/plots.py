@@ -13,6 +13,22 @@ FLOOR = 1e-18   # lowest |relative error| shown: below double round-off
 COMPONENTS = (("mass", "mass", "C0"), ("enthalpy", "energy (enthalpy)", "C3"), ("mom", "momentum", "C2"))
 
 
+def _save(fig, path):
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return path
+
+
+def _time_plot(fig, ax, path, time_unit, ylabel):
+    """Label, grid, legend and save a single plot over time."""
+    ax.set_xlabel(f"time [{time_unit}]")
+    ax.set_ylabel(ylabel)
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=7)
+    return _save(fig, path)
+
+
 def _time_unit(t):
     """(factor, unit) for a time axis reaching t [s]."""
     t = float(np.max(t)) if np.size(t) else 0.0
@@ -78,10 +94,7 @@ def balances(path, led=None, bal=None):
         ax.grid(True, which="both", alpha=0.3)
         if ax.lines:
             ax.legend(fontsize=7)
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
-    return path
+    return _save(fig, path)
 
 
 def melted_mass(path, led=None, pcsv=None):
@@ -102,14 +115,7 @@ def melted_mass(path, led=None, pcsv=None):
             ax.plot(t, led["mass_cumulative_lost"], "C7", lw=1, label="left the mesh (lost)")
     if pcsv is not None and "mass_melted" in pcsv.dtype.names:
         ax.plot(pcsv["time"] * tf, np.cumsum(pcsv["mass_melted"]), "k:", lw=1.5, label="molten (fix powder/melt)")
-    ax.set_xlabel(f"time [{tu}]")
-    ax.set_ylabel("mass [kg]")
-    ax.grid(True, alpha=0.3)
-    ax.legend(fontsize=7)
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
-    return path
+    return _time_plot(fig, ax, path, tu, "mass [kg]")
 
 
 def absorbed_power(path, bal=None, pcsv=None, eta_p=None):
@@ -131,14 +137,7 @@ def absorbed_power(path, bal=None, pcsv=None, eta_p=None):
                 label="total")
     if eta_p:
         ax.axhline(eta_p, color="0.5", ls="--", lw=1, label="absorptivity x power")
-    ax.set_xlabel(f"time [{tu}]")
-    ax.set_ylabel("absorbed laser power [W]")
-    ax.grid(True, alpha=0.3)
-    ax.legend(fontsize=7)
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
-    return path
+    return _time_plot(fig, ax, path, tu, "absorbed laser power [W]")
 
 
 def cross_section(centres, fields, trk):
@@ -226,7 +225,4 @@ def bead_profile(path, centres, fields, trk, time, tmax_lf=None):
     ax.set_title(f"bead cross-section at {pos * f:.4g} {unit} along the track, t = {_time_text(time)}"
                  + ("\n(white: surface alpha = 1/2; red dashed: fused, liquid fraction reached 1/2)"
                     if drawn_fused else "\n(white: surface alpha = 1/2)"), fontsize=9)
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
-    return path
+    return _save(fig, path)
