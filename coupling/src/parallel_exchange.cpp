@@ -253,22 +253,25 @@ void ParallelExchange::deposit_taken(const std::vector<std::int64_t> &ids, const
   // g's claim on the cell's capacity (its part of the particle volume the cell holds; all
   // of it for a particle alone in the cell) times the cell's temperature difference to the
   // particle, in the direction g took heat
-  std::vector<double> claimed;  // per cell: particle volume it holds, summed over particles
+  std::vector<double> held(cells_.size(), 0.0);  // per weight: the particle volume in its cell
+  std::vector<double> claimed;                    // per cell: that volume summed over particles
+  std::vector<double> available(cells_.size(), 0.0);
   if (f.volume) {
     claimed.assign(cell_amounts.size(), 0.0);
     for (std::size_t g = 0; g < n; ++g)
-      for (std::size_t k = start_[g]; k < start_[g + 1]; ++k)
-        claimed.at(std::size_t(cells_[k])) += weights_[k] * particle_volume(all_[g].radius);
+      for (std::size_t k = start_[g]; k < start_[g + 1]; ++k) {
+        held[k] = weights_[k] * particle_volume(all_[g].radius);
+        claimed.at(std::size_t(cells_[k])) += held[k];
+      }
+    for (std::size_t g = 0; g < n; ++g)
+      for (std::size_t k = start_[g]; k < start_[g + 1]; ++k) {
+        const long c = cells_[k];
+        const double capacity = held[k] / claimed[std::size_t(c)] * f.rho[c] * f.cp[c] * f.volume[c];
+        const double *a = &all[kOut * g];
+        const double dT = a[0] >= 0.0 ? f.T[c] - a[4] : a[4] - f.T[c];
+        available[k] = capacity * std::max(dT, 0.0);
+      }
   }
-  const auto available = [&](std::size_t g, std::size_t k) {
-    if (!f.volume) return 0.0;
-    const long c = cells_[k];
-    const double held = weights_[k] * particle_volume(all_[g].radius);
-    const double capacity = held / claimed[std::size_t(c)] * f.rho[c] * f.cp[c] * f.volume[c];
-    const double *a = &all[kOut * g];
-    const double dT = a[0] >= 0.0 ? f.T[c] - a[4] : a[4] - f.T[c];
-    return capacity * std::max(dT, 0.0);
-  };
   // per particle over every rank's cells: capacity sum w rho cp, mass sum w rho, available heat
   std::vector<double> sums(3 * n, 0.0);
   for (std::size_t g = 0; g < n; ++g)
@@ -276,7 +279,7 @@ void ParallelExchange::deposit_taken(const std::vector<std::int64_t> &ids, const
       const long c = cells_[k];
       sums[3 * g] += weights_[k] * f.rho[c] * f.cp[c];
       sums[3 * g + 1] += weights_[k] * f.rho[c];
-      sums[3 * g + 2] += available(g, k);
+      sums[3 * g + 2] += available[k];
     }
   if (n) MPI_Allreduce(MPI_IN_PLACE, sums.data(), int(3 * n), MPI_DOUBLE, MPI_SUM, comm_);
   for (std::size_t g = 0; g < n; ++g) {
@@ -290,8 +293,8 @@ void ParallelExchange::deposit_taken(const std::vector<std::int64_t> &ids, const
       // each cell by the heat it has above (below) the particle's temperature, so each moves
       // the same fraction of the way towards it and none passes it; what is beyond all cells'
       // room (the fluid step is too long: the bound guard stops the run) by capacity
-      const double given = Q <= room ? (room > 0.0 ? Q * available(g, k) / room : 0.0)
-                                     : available(g, k) + (Q - room) * by_capacity;
+      const double given = Q <= room ? (room > 0.0 ? Q * available[k] / room : 0.0)
+                                     : available[k] + (Q - room) * by_capacity;
       const double mass_share = mass > 0.0 ? weights_[k] * f.rho[c] / mass : weights_[k];
       Amounts &cell = cell_amounts.at(std::size_t(c));
       cell[kEnthalpy] -= std::copysign(given, a[0]);
