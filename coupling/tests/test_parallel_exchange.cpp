@@ -84,6 +84,40 @@ TEST_P(ParallelExchangeSerial, SamplingEqualsSampleFluid)
   }
 }
 
+namespace {
+// 8^3 unit cells, melt (2000 K, moving along x) below y = 4, gas (500 K, moving along y) above,
+// and a particle of radius 1.6 on the interface (centre/overlap) or just below it (neighbours:
+// its centre cell is metal)
+struct MeltOverGas {
+  CartesianGridMesh mesh = CartesianGridMesh::uniform(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(8, 8, 8), 8, 8, 8);
+  std::vector<double> T, k, rho, mu, cp, U, V;
+  MeltOverGas()
+  {
+    for (long c = 0; c < mesh.n_cells(); ++c) {
+      const bool metal = mesh.cell_centre(c).y() < 4.0;
+      T.push_back(metal ? 2000.0 : 500.0);
+      k.push_back(metal ? 35.95 : 0.026);
+      rho.push_back(metal ? 7430.0 : 7.43);
+      cp.push_back(metal ? 965.0 : 10.0);
+      mu.push_back(1e-3);
+      U.insert(U.end(), {metal ? 1.0 : 0.0, metal ? 0.0 : 5.0, 0.0});
+      V.push_back(1.0);
+    }
+  }
+  // with_volume: cell volumes given (heat by each cell's heat beyond the particle's temperature)
+  CellFluidFields fields(bool with_volume) const
+  {
+    return CellFluidFields{T.data(), k.data(),  rho.data(), mu.data(),
+                           cp.data(), U.data(), nullptr,    nullptr,
+                           with_volume ? V.data() : nullptr};
+  }
+  static ParticleShape particle(DistributionModel model)
+  {
+    return ParticleShape{Eigen::Vector3d(4.5, model == DistributionModel::Centre ? 3.5 : 4.0, 4.5), 1.6};
+  }
+};
+}  // namespace
+
 // A particle half in melt, half in gas (overlap, 4 cells across the interface): it sees the
 // melt's temperature and velocity (capacity- and mass-weighted). Without cell volumes the
 // heat and impulse it takes come from the cells by capacity and by mass, so the gas cells
@@ -92,22 +126,13 @@ TEST_P(ParallelExchangeSerial, SamplingEqualsSampleFluid)
 // sums are exact.
 TEST_P(ParallelExchangeSerial, HeatAndImpulseComeFromTheCellsByCapacityAndMass)
 {
-  const auto mesh = CartesianGridMesh::uniform(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(8, 8, 8), 8, 8, 8);
+  const MeltOverGas scene;
+  const auto &mesh = scene.mesh;
+  const auto &T = scene.T;
   const double rhocp_metal = 7430.0 * 965.0, rhocp_gas = 7.43 * 10.0;
-  std::vector<double> T, k, rho, mu, cp, U;
-  for (long c = 0; c < mesh.n_cells(); ++c) {
-    const bool metal = mesh.cell_centre(c).y() < 4.0;
-    T.push_back(metal ? 2000.0 : 500.0);
-    k.push_back(metal ? 35.95 : 0.026);
-    rho.push_back(metal ? 7430.0 : 7.43);
-    cp.push_back(metal ? 965.0 : 10.0);
-    mu.push_back(1e-3);
-    U.insert(U.end(), {metal ? 1.0 : 0.0, metal ? 0.0 : 5.0, 0.0});
-  }
-  const CellFluidFields f{T.data(), k.data(), rho.data(), mu.data(), cp.data(), U.data(), nullptr, nullptr};
+  const CellFluidFields f = scene.fields(false);
   ParallelExchange ex(mesh, GetParam(), MPI_COMM_SELF);
-  // on the interface for centre/overlap; just below it for neighbours (its centre cell is metal)
-  ex.locate({ParticleShape{Eigen::Vector3d(4.5, GetParam() == DistributionModel::Centre ? 3.5 : 4.0, 4.5), 1.6}});
+  ex.locate({MeltOverGas::particle(GetParam())});
   std::vector<SampledFluid> s;
   ex.sample(f, s);
   std::vector<CellWeight> w;
@@ -160,21 +185,12 @@ TEST_P(ParallelExchangeSerial, HeatAndImpulseComeFromTheCellsByCapacityAndMass)
 // cell to 1200 K and the rest goes by capacity. Sums exact in each case.
 TEST_P(ParallelExchangeSerial, HeatComesFromTheCellsBeyondTheParticlesTemperature)
 {
-  const auto mesh = CartesianGridMesh::uniform(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(8, 8, 8), 8, 8, 8);
-  std::vector<double> T, k, rho, mu, cp, U, V;
-  for (long c = 0; c < mesh.n_cells(); ++c) {
-    const bool metal = mesh.cell_centre(c).y() < 4.0;
-    T.push_back(metal ? 2000.0 : 500.0);
-    k.push_back(metal ? 35.95 : 0.026);
-    rho.push_back(metal ? 7430.0 : 7.43);
-    cp.push_back(metal ? 965.0 : 10.0);
-    mu.push_back(1e-3);
-    U.insert(U.end(), {0.0, 0.0, 0.0});
-    V.push_back(1.0);
-  }
-  const CellFluidFields f{T.data(), k.data(), rho.data(), mu.data(), cp.data(), U.data(), nullptr, nullptr, V.data()};
+  const MeltOverGas scene;
+  const auto &mesh = scene.mesh;
+  const auto &T = scene.T, &rho = scene.rho, &cp = scene.cp, &V = scene.V;
+  const CellFluidFields f = scene.fields(true);
   ParallelExchange ex(mesh, GetParam(), MPI_COMM_SELF);
-  ex.locate({ParticleShape{Eigen::Vector3d(4.5, GetParam() == DistributionModel::Centre ? 3.5 : 4.0, 4.5), 1.6}});
+  ex.locate({MeltOverGas::particle(GetParam())});
   std::vector<CellWeight> w;
   ex.local_weights(0, w);
   const double Tp = 1200.0;
