@@ -27,22 +27,23 @@ def tokenize(text):
     return _TOKEN.findall(_strip_comments(text))
 
 
+def _parse_item(tokens, i):
+    """(item, next index) at tokens[i]: a nested list or dictionary, or one plain token."""
+    t = tokens[i]
+    if t in ("(", "["):
+        return _parse_list(tokens, i + 1, ")" if t == "(" else "]")
+    if t == "{":
+        return _parse_dict(tokens, i + 1, "}")
+    return t, i + 1
+
+
 def _parse_list(tokens, i, close):
     out = []
     while i < len(tokens):
-        t = tokens[i]
-        if t == close:
+        if tokens[i] == close:
             return out, i + 1
-        if t in ("(", "["):
-            sub, i = _parse_list(tokens, i + 1, ")" if t == "(" else "]")
-            out.append(sub)
-            continue
-        if t == "{":
-            sub, i = _parse_dict(tokens, i + 1, "}")
-            out.append(sub)
-            continue
-        out.append(t)
-        i += 1
+        item, i = _parse_item(tokens, i)
+        out.append(item)
     raise FoamDictError(f"unclosed '{'(' if close == ')' else '['}'")
 
 
@@ -66,17 +67,8 @@ def _parse_dict(tokens, i, close):
             continue
         value = []
         while i < len(tokens) and tokens[i] not in (";", close):
-            v = tokens[i]
-            if v in ("(", "["):
-                sub, i = _parse_list(tokens, i + 1, ")" if v == "(" else "]")
-                value.append(sub)
-                continue
-            if v == "{":
-                sub, i = _parse_dict(tokens, i + 1, "}")
-                value.append(sub)
-                continue
-            value.append(v)
-            i += 1
+            item, i = _parse_item(tokens, i)
+            value.append(item)
         if i < len(tokens) and tokens[i] == ";":
             i += 1
         d[key] = value
