@@ -295,6 +295,8 @@ void LammpsCouplingHost::command(const std::string &line)
   impl_->needs_setup = true;
 }
 
+// through command(): the next advance() runs a full setup, as a run resumed from this file
+// does, so an uninterrupted run and a resumed one take the same steps after it
 void LammpsCouplingHost::write_restart(const std::string &file) { command("write_restart " + file); }
 
 void LammpsCouplingHost::write_particles(const std::string &file)
