@@ -37,6 +37,9 @@ Description
 #include "evaporationModel.H"
 #include "meltdemBalance.H"
 #include "particleCoupling.H"
+#include "energyTransport.H"
+#include "upwind.H"
+#include "gaussConvectionScheme.H"
 
 // * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * //
 

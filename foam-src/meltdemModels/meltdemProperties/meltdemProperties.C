@@ -43,6 +43,7 @@ meltdemProperties::meltdemProperties(const fvMesh& mesh)
     darcyB_(1),
     nEnergyCorr_(10),
     energyTolerance_(1e-8),
+    maxThermalCo_(1),
     isothermalT_(300)
 {
     if (!found("physics"))
@@ -127,10 +128,12 @@ meltdemProperties::meltdemProperties(const fvMesh& mesh)
             const dictionary& ec = subDict("energyControls");
             nEnergyCorr_ = ec.getOrDefault<label>("nCorrectors", nEnergyCorr_);
             energyTolerance_ = ec.getOrDefault<scalar>("tolerance", energyTolerance_);
-            if (nEnergyCorr_ < 1 || energyTolerance_ <= 0)
+            maxThermalCo_ = ec.getOrDefault<scalar>("maxThermalCo", maxThermalCo_);
+            if (nEnergyCorr_ < 1 || energyTolerance_ <= 0 || maxThermalCo_ < 0)
             {
                 FatalIOErrorInFunction(ec)
-                    << "energyControls: nCorrectors >= 1 and tolerance > 0 required"
+                    << "energyControls: nCorrectors >= 1, tolerance > 0 and"
+                       " maxThermalCo >= 0 required"
                     << exit(FatalIOError);
             }
         }

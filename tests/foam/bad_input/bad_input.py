@@ -51,6 +51,8 @@ VARIANTS = {
                                "Th0 663.731; CM 1.1095e-3; }\n", ["Tboil"]),
     "missing_darcy_C": ("darcy on, darcy { b 1e-3; } (no C)", {"flow": "on", "darcy": "on"}, METAL, GAS,
                         "darcy { b 1e-3; }\n", ["'C'"]),
+    "negative_thermal_courant": ("energyControls { maxThermalCo -1; }", {}, METAL, GAS,
+                                 "energyControls { maxThermalCo -1; }\n", ["maxThermalCo"]),
 }
 
 
