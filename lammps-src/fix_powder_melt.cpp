@@ -354,11 +354,22 @@ void FixPowderMelt::post_force(int /*vflag*/)
     for (int k = 0; k < 3; k++) F.drag[k] = beta * (fluid.U[k] - v[i][k]);
     if (fluid.mass > 0.0 && !in_setup)
       for (int k = 0; k < 3; k++) melt[i][P_UX + k] -= F.drag[k] * dt / fluid.mass;
-    if (solid_flag && fluid.solid.present) {
-      // the continuum's solid metal repels the particle as a granular wall
-      const Eigen::Vector3d Fs = mc::solid_contact_force(
-          fluid.solid, Eigen::Vector3d(x[i][0], x[i][1], x[i][2]), radius[i], rmass[i],
-          Eigen::Vector3d(v[i][0], v[i][1], v[i][2]), solid_estar, solid_alpha);
+    if (solid_flag) {
+      // the continuum's solid metal repels the particle as a granular wall, counting only
+      // the overlap the particle made by moving (not what freezing melt put around it)
+      const Eigen::Vector3d xi(x[i][0], x[i][1], x[i][2]);
+      mc::SolidContactMemory memory;
+      memory.offset = melt[i][S_OFFSET];
+      memory.has_plane = melt[i][S_HAS] != 0.0;
+      memory.point = Eigen::Vector3d(melt[i][S_PX], melt[i][S_PY], melt[i][S_PZ]);
+      memory.normal = Eigen::Vector3d(melt[i][S_NX], melt[i][S_NY], melt[i][S_NZ]);
+      const double offset = mc::update_solid_contact(memory, fluid.solid, xi, radius[i]);
+      melt[i][S_OFFSET] = memory.offset;
+      melt[i][S_HAS] = memory.has_plane ? 1.0 : 0.0;
+      for (int k = 0; k < 3; k++) melt[i][S_PX + k] = memory.point[k], melt[i][S_NX + k] = memory.normal[k];
+      const Eigen::Vector3d Fs =
+          mc::solid_contact_force(fluid.solid, xi, radius[i], rmass[i], Eigen::Vector3d(v[i][0], v[i][1], v[i][2]),
+                                  solid_estar, solid_alpha, offset);
       for (int k = 0; k < 3; k++) f[i][k] += Fs[k];
     }
     for (int k = 0; k < 3; k++) {
@@ -557,7 +568,7 @@ void FixPowderMelt::set_arrays(int i)
   melt[i][HSPEC] = mat.cp * T0;
   melt[i][MASS0] = 0.0;
   melt[i][MOLTEN] = 0.0;
-  for (int k = I_MASS; k < NCOL; k++) melt[i][k] = 0.0;
+  for (int k = S_OFFSET; k < NCOL; k++) melt[i][k] = 0.0;
 }
 
 int FixPowderMelt::pack_exchange(int i, double *buf)

@@ -94,8 +94,10 @@ class FixPowderMelt : public Fix {
   // at the next step's pre_exchange. I_* accumulate over the coupling interval: molten
   // mass, enthalpy and momentum handed over, heat absorbed, drag impulse, laser energy
   // P_*: the velocity of the fluid parcel the particle drags over the coupling interval
-  // (two-body drag; P_SET 0: not yet taken from the fluid this interval)
-  enum { TEMP, FRAC, HSPEC, MASS0, MOLTEN, I_MASS, I_ENTH, I_PX, I_PY, I_PZ, I_HEAT, I_DX, I_DY, I_DZ, I_LASER,
+  // (two-body drag; P_SET 0: not yet taken from the fluid this interval). S_*: the
+  // particle's memory of its solid-metal contact (mc::SolidContactMemory), kept across
+  // intervals
+  enum { TEMP, FRAC, HSPEC, MASS0, MOLTEN, S_OFFSET, S_HAS, S_PX, S_PY, S_PZ, S_NX, S_NY, S_NZ, I_MASS, I_ENTH, I_PX, I_PY, I_PZ, I_HEAT, I_DX, I_DY, I_DZ, I_LASER,
          P_UX, P_UY, P_UZ, P_SET, NCOL };
   std::vector<meltdem::coupling::ExchangeRecord> finished;  // deleted this interval
   meltdem::coupling::ExchangeRecord record(int i) const;

@@ -49,3 +49,73 @@ TEST(SolidMetalContact, BounceRestitutionMatchesTsujiDamping)
   }
   EXPECT_EQ(solid_contact_force(s, Eigen::Vector3d(0, 2 * R, 0), R, m, Eigen::Vector3d::Zero(), E, 0.5).norm(), 0.0);
 }
+
+namespace {
+SolidSurface plane(double height)
+{
+  SolidSurface s;
+  s.present = true;
+  s.point = Eigen::Vector3d(0, height, 0);
+  s.normal = Eigen::Vector3d::UnitY();
+  return s;
+}
+}  // namespace
+
+TEST(SolidMetalContact, FreezingAroundAGrainGivesNoKick)
+{
+  // a 16 um steel grain at rest; the melt under it freezes and the solid surface appears
+  // 0.8 R above its lowest point (and later jumps above its centre): no force, while plain
+  // Hertz would push with ~0.1 N, 1e10 m/s^2
+  const double R = 8e-6, m = 7430 * 4.0 / 3.0 * M_PI * R * R * R, E = 1.1e11, alpha = alpha_for_restitution(0.5);
+  const Eigen::Vector3d x(0, R, 0), v = Eigen::Vector3d::Zero();
+  SolidContactMemory memory;
+  const SolidSurface s = plane(0.8 * R);
+  const double offset = update_solid_contact(memory, s, x, R);
+  const double plain = solid_contact_force(s, x, R, m, v, E, alpha).norm();
+  EXPECT_GT(plain / m, 1e9);
+  meltdem::testing::expect_absolute("solid metal contact: force on a grain the solid froze around [N]",
+                                    solid_contact_force(s, x, R, m, v, E, alpha, offset).norm(), 0.0, 0.0);
+  EXPECT_NEAR(offset, 0.8 * R, 1e-18);
+  // the staircase switches to a face above the centre: still no force
+  const SolidSurface higher = plane(1.5 * R);
+  EXPECT_EQ(solid_contact_force(higher, x, R, m, v, E, alpha, update_solid_contact(memory, higher, x, R)).norm(), 0.0);
+  // pressed 0.1 R further into the unchanged surface: the force of an overlap of 0.1 R
+  const Eigen::Vector3d pressed(0, 0.9 * R, 0);
+  const double off = update_solid_contact(memory, higher, pressed, R);
+  meltdem::testing::expect_relative("solid metal contact: force after pressing 0.1 R into a surface that froze around",
+                                    solid_contact_force(higher, pressed, R, m, v, E, alpha, off).norm(),
+                                    solid_contact_force(plane(0.1 * R), Eigen::Vector3d(0, R, 0), R, m, v, E, alpha).norm(),
+                                    1e-12);
+  // moving out lowers the offset with the overlap; clear of the surface it is forgotten
+  EXPECT_NEAR(update_solid_contact(memory, higher, Eigen::Vector3d(0, 2.0 * R, 0), R), 0.5 * R, 1e-18);
+  EXPECT_EQ(update_solid_contact(memory, higher, Eigen::Vector3d(0, 3.0 * R, 0), R), 0.0);
+  EXPECT_EQ(memory.offset, 0.0);
+}
+
+TEST(SolidMetalContact, ApproachingGrainBouncesAsWithoutMemory)
+{
+  // the surface is known before the grain reaches it (reach = travel + a cell): the memory
+  // changes nothing, the bounce keeps the restitution of the damping
+  const double R = 15e-6, m = 7800 * 4.0 / 3.0 * M_PI * R * R * R, E = 1.1e11, e = 0.5;
+  const double alpha = alpha_for_restitution(e);
+  const SolidSurface s = plane(0.0);
+  SolidContactMemory memory;
+  Eigen::Vector3d x(0, 1.2 * R, 0), v(0, -2.0, 0);
+  const double dt = 2e-11;
+  double worst_offset = 0.0;
+  auto force = [&]() {
+    const double off = update_solid_contact(memory, s, x, R);
+    worst_offset = std::max(worst_offset, off);
+    return solid_contact_force(s, x, R, m, v, E, alpha, off);
+  };
+  Eigen::Vector3d f = force();
+  for (int k = 0; k < 4000000 && !(x.y() > R && v.y() > 0); ++k) {
+    v += 0.5 * dt * f / m;
+    x += dt * v;
+    f = force();
+    v += 0.5 * dt * f / m;
+  }
+  EXPECT_EQ(worst_offset, 0.0);
+  meltdem::testing::expect_relative("solid metal contact with memory: rebound / impact speed, e = 0.5", v.y() / 2.0, e,
+                                    0.01);
+}

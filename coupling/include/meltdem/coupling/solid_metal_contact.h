@@ -28,8 +28,28 @@ SolidSurface nearest_solid_surface(const Eigen::Vector3d &c, const std::vector<E
                                    const std::vector<Eigen::Vector3d> &hi);
 
 // Hertz/Tsuji normal force on a sphere (radius R, mass m, velocity v, centre x) from the
-// plane; zero without overlap. E_star = effective modulus, alpha = Tsuji damping.
+// plane; zero without overlap. E_star = effective modulus, alpha = Tsuji damping. offset:
+// overlap the surface brought onto the particle (SolidContactMemory), not counted.
 Eigen::Vector3d solid_contact_force(const SolidSurface &s, const Eigen::Vector3d &x, double R, double m,
-                                    const Eigen::Vector3d &v, double E_star, double alpha);
+                                    const Eigen::Vector3d &v, double E_star, double alpha, double offset = 0.0);
+
+// What a particle remembers of its contact with the solid metal. A surface that appears
+// on a particle or moves onto it (melt freezing around a grain, a cell turning solid, the
+// cell-face staircase switching to another face) overlaps it without the particle having
+// moved; Hertz would turn that overlap into a kick of 1e2..1e4 m/s within a microsecond
+// (the ded-stream switch-off: a grain engulfed by freezing melt left at 622 m/s). Only
+// the overlap the particle gains by its own motion against an unchanged surface counts:
+// the rest is the offset. It shrinks as the particle moves out and is gone once the
+// particle is clear, so a grain caught by freezing melt stays where it was caught.
+struct SolidContactMemory {
+  double offset = 0.0;
+  bool has_plane = false;
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+};
+
+// Update the memory for the surface s seen now by the sphere (centre x, radius R); returns
+// the offset to pass to solid_contact_force.
+double update_solid_contact(SolidContactMemory &m, const SolidSurface &s, const Eigen::Vector3d &x, double R);
 
 }  // namespace meltdem::coupling
