@@ -347,6 +347,10 @@ def run(case, np_=1, timeout=None):
                 p.wait()
             rc = "timeout"
     wall = time.time() - t0
+    if np_ > 1:
+        # the analysis reads the fields of the case folder (also after a stop or a timeout)
+        fc.run(["reconstructPar", "-fields", "(T alpha.metal U liquidFraction)"], case, "log.reconstructPar",
+               check=False)
     with open(os.path.join(case, "wall_seconds"), "w") as f:
         f.write(f"{wall:.1f} {np_}\n")
     print(f"{case}: ran {wall:.0f} s on {np_} rank(s)" + ("" if rc == 0 else f" (stopped: {rc})"))
