@@ -159,10 +159,9 @@ def write_foam_case(case, p, v, t_end):
     open(os.path.join(case, "system", "controlDict"), "w").write(txt)
     fc.fv_schemes(case)
     # closed box: pressure reference; tight alpha solve (binder volume conserved to round-off)
-    fc.fv_solution(case, n_correctors=3, p_ref_cell=n[0] * n[1] * (n[2] - 1))
+    fc.fv_solution(case, n_correctors=3, p_ref_cell=n[0] * n[1] * (n[2] - 1), alpha_tolerance=1e-14)
     sol = os.path.join(case, "system", "fvSolution")
     txt = open(sol).read()
-    txt = txt.replace("tolerance 1e-10; relTol 0;\n    }", "tolerance 1e-14; relTol 0;\n    }", 1)
     txt = txt.replace('relaxationFactors { equations { ".*" 1; } }', "")
     # the reference as a point (a cell index would be the master's local one in parallel)
     txt = txt.replace(f"pRefCell {n[0] * n[1] * (n[2] - 1)};",

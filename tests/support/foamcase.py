@@ -186,15 +186,17 @@ snGradSchemes {{ default corrected; }}
 
 
 def fv_solution(case, alpha="alpha.metal", extra_solvers="", n_correctors=3, n_outer=1,
-                momentum_predictor="no", p_ref_cell=None):
-    """p_ref_cell: cell index of the pressure reference (closed domains), value 0."""
+                momentum_predictor="no", p_ref_cell=None, alpha_tolerance=1e-10):
+    """p_ref_cell: cell index of the pressure reference (closed domains), value 0.
+    alpha_tolerance: 1e-14 conserves the metal mass to round-off (the MULESCorr predictor is
+    only as conservative as its linear solve, doc/foam_meltdemFoam.rst)."""
     ref = "" if p_ref_cell is None else f"    pRefCell {p_ref_cell};\n    pRefValue 0;\n"
     dictionary(case, "system/fvSolution", f"""solvers
 {{
     "{alpha}.*"
     {{
         nAlphaCorr 2; nAlphaSubCycles 1; cAlpha 1; MULESCorr yes; nLimiterIter 5;
-        solver smoothSolver; smoother symGaussSeidel; tolerance 1e-10; relTol 0;
+        solver smoothSolver; smoother symGaussSeidel; tolerance {alpha_tolerance!r}; relTol 0;
     }}
     "pcorr.*" {{ solver PCG; preconditioner DIC; tolerance 1e-8; relTol 0; }}
     p_rgh {{ solver PCG; preconditioner DIC; tolerance 1e-9; relTol 0.01; }}

@@ -71,10 +71,8 @@ energyControls { nCorrectors 50; tolerance 1e-12; }
 """)
     fc.fv_schemes(case)
     fc.fv_solution(case, p_ref_cell=N * N - 1,
-                   extra_solvers='    "T.*" { solver PBiCGStab; preconditioner DILU; tolerance 1e-13; relTol 0; }\n')
-    path = os.path.join(case, "system", "fvSolution")
-    txt = open(path).read().replace("tolerance 1e-10; relTol 0;\n    }", "tolerance 1e-14; relTol 0;\n    }", 1)
-    open(path, "w").write(txt)
+                   extra_solvers='    "T.*" { solver PBiCGStab; preconditioner DILU; tolerance 1e-13; relTol 0; }\n',
+                   alpha_tolerance=1e-14)
     path = os.path.join(case, "system", "controlDict")
     txt = open(path).read().replace("writePrecision 12;", "writePrecision 17;")
     open(path, "w").write(txt)

@@ -70,10 +70,8 @@ energyControls {{ nCorrectors 20; tolerance 1e-12; maxThermalCo {max_thermal_co!
 """)
     fc.fv_schemes(case)
     fc.fv_solution(case, p_ref_cell=NX * NY - 1,
-                   extra_solvers='    "T.*" { solver PBiCGStab; preconditioner DILU; tolerance 1e-16; relTol 0; }\n')
-    path = os.path.join(case, "system", "fvSolution")
-    txt = open(path).read().replace("tolerance 1e-10; relTol 0;\n    }", "tolerance 1e-14; relTol 0;\n    }", 1)
-    open(path, "w").write(txt)
+                   extra_solvers='    "T.*" { solver PBiCGStab; preconditioner DILU; tolerance 1e-16; relTol 0; }\n',
+                   alpha_tolerance=1e-14)
     fc.run(["blockMesh"], case, "log.blockMesh")
 
 
