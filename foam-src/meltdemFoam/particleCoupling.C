@@ -801,7 +801,7 @@ void Foam::meltdem::particleCoupling::checkBounded() const
             << (mag(cell[2]) < 0.1*mag(cell[1] - cell[0])
                 ? ": the rest came from the continuum's own solve (flow, surface forces, "
                   "laser, the displacement by the melt's volume), which maxDeltaT and maxCo "
-                  "limit"
+                  "limit, and whose convection of T energyControls maxThermalCo bounds"
                 : "")
             << exit(FatalError);
     }
