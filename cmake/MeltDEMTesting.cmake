@@ -22,4 +22,10 @@ function(meltdem_add_script_test)
   if(ARG_TIMEOUT)
     set_property(TEST ${ARG_NAME} PROPERTY TIMEOUT ${ARG_TIMEOUT})
   endif()
+  # a 2-rank test takes both of ctest -j2's slots: two of them side by side put 4 busy-polling
+  # ranks on 2 cores and ran 30x slower (coupling.thesis_particle.np2: 8 s alone, 4 min paired)
+  if(ARG_NAME MATCHES "np2" OR "mpi" IN_LIST ARG_LABELS OR "--np" IN_LIST ARG_COMMAND
+     OR "-np" IN_LIST ARG_COMMAND)
+    set_property(TEST ${ARG_NAME} PROPERTY PROCESSORS 2)
+  endif()
 endfunction()

@@ -22,6 +22,8 @@ import coupledcase as cc  # noqa: E402
 import foamcase as fc  # noqa: E402
 
 TEST = "scenes.pbf-point"
+NO_KICK = ("; no recoil, and since 53da1c5 no grain is kicked out of freezing metal (the 4-27 grains "
+           "counted before were that kick)")
 
 
 # wall-clock limit of the solver: the CI variant takes ~2 min idle; a run whose fluid step
@@ -95,8 +97,10 @@ def main():
     ok &= check_at_least(TEST, "keyhole depth below the initial substrate surface [um] (paper: deep "
                          "keyhole; at least one cell)", s["keyhole_depth_max_um"], 10.0,
                          xfail=stopped(s, stop) or short + "; no boiling, no recoil")
+    # grains thrown out of the bed: the paper's come with the keyhole; the 4-27 grains counted
+    # here before 53da1c5 were pushed out of freezing metal by the solid-metal contact
     ok &= check_at_least(TEST, "grains ejected (paper: ejected from the melt-pool edge)", s["grains_ejected"], 1,
-                         xfail=stopped(s, stop))
+                         xfail=stopped(s, stop) or short + NO_KICK)
     return fc.finish(ok, work, keep)
 
 
