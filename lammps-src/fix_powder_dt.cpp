@@ -134,6 +134,13 @@ int FixPowderDt::setmask()
 void FixPowderDt::init()
 {
   respaflag = utils::strmatch(update->integrate_style, "^respa") ? 1 : 0;
+  // two fixes setting the time step would overwrite each other every step
+  for (int i = 0; i < modify->nfix; i++) {
+    Fix *f = modify->fix[i];
+    if (f != this && (utils::strmatch(f->style, "^dt/reset") || strcmp(f->style, "powder/dt") == 0))
+      error->all(FLERR, "Fix powder/dt {} and fix {} {} both set the time step: use one of them", id, f->id,
+                 f->style);
+  }
   read_pair_modulus();
 }
 

@@ -43,6 +43,7 @@ namespace {
 enum { ALL, RATE, MASSRATE };
 constexpr int RESTART_VERSION = 2;  // 2: the last ID assigned
 constexpr double CREDIT_EPS = 1.0e-9;
+constexpr double UNBOUNDED = 1.0e19;  // a region's INF bound is +-1e20
 
 // Read access to fix wall/gran's protected geometry. A pointer to a member named through
 // a derived class is a pointer to the base member, usable on any FixWallGran object.
@@ -308,11 +309,12 @@ void FixPowderInsert::init()
   // atoms created outside a fixed non-periodic boundary would be lost
   const double lo[3] = {region->extent_xlo, region->extent_ylo, region->extent_zlo};
   const double hi[3] = {region->extent_xhi, region->extent_yhi, region->extent_zhi};
+  // (INF bounds mean the box: the candidates are drawn inside it)
   for (int d = 0; d < 3; d++)
-    if (domain->boundary[d][0] == 1 && lo[d] < domain->boxlo[d])
+    if (domain->boundary[d][0] == 1 && lo[d] < domain->boxlo[d] && lo[d] > -UNBOUNDED)
       error->all(FLERR, fmt::format("Fix powder/insert region {} extends outside the simulation box", idregion));
   for (int d = 0; d < 3; d++)
-    if (domain->boundary[d][1] == 1 && hi[d] > domain->boxhi[d])
+    if (domain->boundary[d][1] == 1 && hi[d] > domain->boxhi[d] && hi[d] < UNBOUNDED)
       error->all(FLERR, fmt::format("Fix powder/insert region {} extends outside the simulation box", idregion));
 
   // granular pair styles size their cutoff from existing particles and from fix pour /
@@ -453,8 +455,15 @@ void FixPowderInsert::pre_exchange()
     }
   }
 
-  const double blo[3] = {region->extent_xlo, region->extent_ylo, region->extent_zlo};
-  const double bhi[3] = {region->extent_xhi, region->extent_yhi, region->extent_zhi};
+  // candidates are drawn in the region's bounding box within the simulation box: a region
+  // given as INF or wider than a periodic box is cut to the box (its periodic images are
+  // checked below)
+  double blo[3] = {region->extent_xlo, region->extent_ylo, region->extent_zlo};
+  double bhi[3] = {region->extent_xhi, region->extent_yhi, region->extent_zhi};
+  for (int d = 0; d < 3; d++) {
+    blo[d] = MAX(blo[d], domain->boxlo[d]);
+    bhi[d] = MIN(bhi[d], domain->boxhi[d]);
+  }
   // largest new radius: pending diameters from a restart may exceed a changed distribution
   double dnew = dist.dmax();
   for (double d : pending) dnew = MAX(dnew, d);
@@ -542,8 +551,14 @@ void FixPowderInsert::pre_exchange()
     if (!ok) break;
     pending.pop_front();
     placed.insert(placed.end(), {c[0], c[1], c[2], d});
-    near.insert(near.end(), {c[0], c[1], c[2], r});
-    grid[key_of(c, 0, 0, 0)].push_back(nnear++);
+    // the new particle and its periodic images, for the particles placed after it
+    for (int ix = -periodic[0]; ix <= periodic[0]; ix++)
+      for (int iy = -periodic[1]; iy <= periodic[1]; iy++)
+        for (int iz = -periodic[2]; iz <= periodic[2]; iz++) {
+          const double p[3] = {c[0] + ix * prd[0], c[1] + iy * prd[1], c[2] + iz * prd[2]};
+          near.insert(near.end(), {p[0], p[1], p[2], r});
+          grid[key_of(p, 0, 0, 0)].push_back(nnear++);
+        }
   }
   const int nnew = placed.size() / 4;
 

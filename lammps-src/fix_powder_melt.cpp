@@ -644,6 +644,9 @@ void FixPowderMelt::interval_records(std::vector<mc::ExchangeRecord> &out) const
   out = finished;
   for (int i = 0; i < atom->nlocal; i++)
     if (atom->mask[i] & groupbit) out.push_back(record(i));
+  // by ID: the coupling's sums then do not depend on LAMMPS's atom order, which a sort or
+  // a restart changes (a resumed run equals the uninterrupted one bit for bit)
+  std::sort(out.begin(), out.end(), [](const mc::ExchangeRecord &a, const mc::ExchangeRecord &b) { return a.id < b.id; });
 }
 
 void FixPowderMelt::reset_interval()

@@ -2,6 +2,7 @@
 #include "lammps_coupling_host.h"
 
 #include "fix_powder_insert.h"
+#include "input_replay.h"
 #include "fix_powder_melt.h"
 #include "lammps_version_guard.h"
 #include "meltdem_styles.h"
@@ -86,52 +87,6 @@ FILE *errors_only_screen()
   return f;
 }
 
-// the input's commands for a resumed run (see the header): continuation lines joined, the
-// box command replaced by read_restart, the state-making commands left out
-std::vector<std::string> resume_commands(const std::string &input_file, const std::string &restart_file)
-{
-  static const char *skipped[] = {"create_atoms", "velocity",      "set",           "displace_atoms", "delete_atoms",
-                                  "run",          "minimize",      "write_restart", "write_data",     "write_dump",
-                                  "change_box",   "reset_timestep", "create_bonds", "rerun",          "read_dump",
-                                  "group"};
-  static const char *unreplayable[] = {"jump", "label", "include", "next"};
-  std::ifstream in(input_file);
-  std::vector<std::string> out;
-  std::string line, command;
-  bool box = false;
-  while (std::getline(in, line)) {
-    // a trailing & continues the command on the next line (LAMMPS's rule)
-    const auto last = line.find_last_not_of(" \t\r");
-    if (last != std::string::npos && line[last] == '&') {
-      command += line.substr(0, last) + ' ';
-      continue;
-    }
-    command += line;
-    std::istringstream words(command);
-    std::string word, id;
-    words >> word >> id;
-    std::string keep = command;
-    command.clear();
-    if (word.empty() || word[0] == '#') continue;
-    for (const char *u : unreplayable)
-      if (word == u)
-        throw LammpsSetupError("cannot resume from a restart with the LAMMPS input " + input_file + ": its '" + word +
-                               "' command cannot be replayed line by line (write the input without it)");
-    if (word == "read_data" || word == "create_box" || word == "read_restart") {
-      if (!box) out.push_back("read_restart " + restart_file);
-      box = true;
-      continue;
-    }
-    if (std::find_if(std::begin(skipped), std::end(skipped), [&](const char *k) { return word == k; }) !=
-        std::end(skipped))
-      continue;
-    out.push_back(keep);
-    if (word == "dump") out.push_back("dump_modify " + id + " append yes");
-  }
-  if (!box) throw LammpsSetupError("cannot resume: the LAMMPS input " + input_file + " defines no box (read_data or create_box)");
-  return out;
-}
-
 }  // namespace
 
 struct LammpsCouplingHost::Impl {
@@ -140,6 +95,11 @@ struct LammpsCouplingHost::Impl {
   std::unique_ptr<TagFluidProvider> provider;
   bool needs_setup = true;
   int me = 0;
+  // the input's commands (empty, with the reason, when it cannot be replayed), its output
+  // files, and the replay of a resumed run
+  std::vector<InputCommand> commands;
+  std::string not_replayable;
+  std::unique_ptr<InputReplay> replay;
 };
 
 LammpsCouplingHost::LammpsCouplingHost(MPI_Comm comm, const std::string &input_file, const std::string &log_file,
@@ -169,11 +129,24 @@ LammpsCouplingHost::LammpsCouplingHost(MPI_Comm comm, const std::string &input_f
   // setup errors reach the terminal (LAMMPS prints them to screen and log, then stops);
   // once the input is read, per-run output goes to the log only
   LAMMPS *lmp = impl_->lmp;
+  try {
+    impl_->commands = read_input_commands(input_file);
+  } catch (const LammpsSetupError &e) {
+    if (!restart_file.empty()) throw;
+    impl_->not_replayable = e.what();
+  }
   if (restart_file.empty())
     lmp->input->file(input_file.c_str());
   else {
+    const std::string dir = restart_file.substr(0, restart_file.find_last_of('/') + 1);
+    impl_->replay = std::make_unique<InputReplay>(restart_file, read_output_sizes(dir + kOutputsFile));
+    if (impl_->me == 0) impl_->replay->rewind_outputs();
+    MPI_Barrier(comm);
     lmp->input->one(("log " + log_file + " append").c_str());
-    for (const std::string &line : resume_commands(input_file, restart_file)) lmp->input->one(line.c_str());
+    for (const InputCommand &c : impl_->commands) {
+      if (c.name() == "run") continue;  // the coupling drives the run
+      for (const std::string &line : impl_->replay->before_checkpoint(lmp, c)) lmp->input->one(line.c_str());
+    }
     lmp->update->atime = restart_time;
     lmp->update->atimestep = lmp->update->ntimestep;
   }
@@ -203,7 +176,16 @@ LammpsCouplingHost::LammpsCouplingHost(MPI_Comm comm, const std::string &input_f
 LammpsCouplingHost::~LammpsCouplingHost()
 {
   delete impl_->lmp;
+  if (impl_->replay && impl_->me == 0) {
+    try {
+      impl_->replay->merge_outputs();
+    } catch (const LammpsSetupError &e) {
+      std::fprintf(stderr, "WARNING: %s\n", e.what());
+    }
+  }
 }
+
+const std::string &LammpsCouplingHost::resume_limitation() const { return impl_->not_replayable; }
 
 double LammpsCouplingHost::timestep() const { return impl_->lmp->update->dt; }
 
@@ -296,8 +278,15 @@ void LammpsCouplingHost::command(const std::string &line)
 }
 
 // through command(): the next advance() runs a full setup, as a run resumed from this file
-// does, so an uninterrupted run and a resumed one take the same steps after it
-void LammpsCouplingHost::write_restart(const std::string &file) { command("write_restart " + file); }
+// does, so an uninterrupted run and a resumed one take the same steps after it. The output
+// files' sizes go beside it: a resumed run cuts back what a killed one wrote past them.
+void LammpsCouplingHost::write_checkpoint(const std::string &dir)
+{
+  command("write_restart " + dir + "/" + kRestartFile);
+  if (impl_->me != 0 || !impl_->not_replayable.empty()) return;
+  if (impl_->replay) impl_->replay->merge_outputs();
+  write_output_sizes(dir + "/" + kOutputsFile, output_sizes(output_files(impl_->lmp, impl_->commands)));
+}
 
 void LammpsCouplingHost::write_particles(const std::string &file)
 {

@@ -35,19 +35,21 @@ class LammpsCouplingHost {
   // library against the headers, registers MeltDEM's styles, runs input_file. The input
   // must use units si, define exactly one fix powder/melt, and not end inside a run.
   //
-  // Resuming (restart_file not empty): the input is run command by command, its box
-  // command (read_data, create_box) replaced by read_restart restart_file, and the commands
-  // that make or change the initial state (create_atoms, read_data ... add, velocity, set,
-  // displace_atoms, delete_atoms, run, minimize, ...) skipped: the restart holds that state.
-  // The settings (pair, fixes with their IDs, computes, dumps: appended to) are applied as
-  // written, so fixes with restart state (powder/melt, powder/insert) continue. LAMMPS
-  // 29Sep2021 does not store the simulated time in restarts: restart_time sets it. Inputs
-  // with jump, label, include or next cannot be replayed (LammpsSetupError).
+  // Resuming (restart_file not empty, kRestartFile of a checkpoint folder): the input is
+  // replayed on the restart (input_replay.h): settings as written, so fixes with restart
+  // state (powder/melt, powder/insert) continue, the state-making commands left out, the
+  // output files continued from their size at the checkpoint. LAMMPS 29Sep2021 does not
+  // store the simulated time in restarts: restart_time sets it. Inputs with jump, label,
+  // next or clear cannot be replayed (LammpsSetupError).
   LammpsCouplingHost(MPI_Comm comm, const std::string &input_file, const std::string &log_file, bool echo,
                      const std::string &restart_file = "", double restart_time = 0.0);
   ~LammpsCouplingHost();
   LammpsCouplingHost(const LammpsCouplingHost &) = delete;
   LammpsCouplingHost &operator=(const LammpsCouplingHost &) = delete;
+
+  // why a run of this input cannot be resumed ("" when it can): its input cannot be
+  // replayed on a restart (jump, label, next, clear)
+  const std::string &resume_limitation() const;
 
   double timestep() const;  // current DEM step [s]
   void set_timestep(double dt);  // as the input command timestep (LAMMPS books the time so far)
@@ -86,8 +88,12 @@ class LammpsCouplingHost {
   // execute one LAMMPS command (e.g. write_restart) between intervals
   void command(const std::string &line);
 
-  // between intervals: the binary restart file a resumed run starts from (collective)
-  void write_restart(const std::string &file);
+  // between intervals: the checkpoint a resumed run starts from, in the folder dir
+  // (collective): the LAMMPS restart kRestartFile, the sizes of the input's output files
+  // kOutputsFile (throws LammpsSetupError when it cannot be written).
+  static constexpr const char *kRestartFile = "lammps.restart";
+  static constexpr const char *kOutputsFile = "lammps.outputs";
+  void write_checkpoint(const std::string &dir);
   // between intervals: every particle as a LAMMPS custom dump (id type x y z vx vy vz radius
   // mass and fix powder/melt's temperature and melted fraction), the simulated time in it
   void write_particles(const std::string &file);

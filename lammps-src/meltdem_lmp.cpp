@@ -1,5 +1,9 @@
 // meltdem-lmp: Debian's LAMMPS library plus MeltDEM's styles. Same command line as lmp;
-// without a project style in the input it behaves exactly as /usr/bin/lmp.
+// without a project style in the input it behaves exactly as /usr/bin/lmp. Two flags of
+// its own (dem_checkpoint.h), taken out before LAMMPS reads the rest:
+//   -checkpoint DIR N   checkpoints every N steps into DIR/<step>/ (needs -in FILE)
+//   -resume             continue from the latest complete checkpoint in DIR
+#include "dem_checkpoint.h"
 #include "lammps_version_guard.h"
 #include "meltdem_styles.h"
 
@@ -10,6 +14,9 @@
 #include "version.h"
 
 #include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <vector>
 #include <mpi.h>
 
 #ifndef MELTDEM_HEADER_LAMMPS_VERSION
@@ -23,13 +30,49 @@ int main(int argc, char **argv)
   MPI_Init(&argc, &argv);
   MPI_Comm lammps_comm = MPI_COMM_WORLD;
   int status = 0;
+  int me = 0;
+  MPI_Comm_rank(lammps_comm, &me);
+
+  // meltdem-lmp's own flags
+  std::vector<char *> args;
+  std::string checkpoint_dir, input_file;
+  long long every = 0;
+  bool resume = false;
+  for (int i = 0; i < argc; i++) {
+    const std::string a = argv[i];
+    if (a == "-checkpoint") {
+      char *end = nullptr;
+      if (i + 2 < argc) every = std::strtoll(argv[i + 2], &end, 10);
+      if (i + 2 >= argc || !end || *end != '\0' || every < 1) {
+        if (me == 0) fprintf(stderr, "ERROR: meltdem-lmp -checkpoint DIR N: N, the steps between checkpoints, "
+                                     "must be a positive integer\n");
+        MPI_Finalize();
+        return 1;
+      }
+      checkpoint_dir = argv[i + 1];
+      i += 2;
+      continue;
+    }
+    if (a == "-resume") {
+      resume = true;
+      continue;
+    }
+    if ((a == "-in" || a == "-i") && i + 1 < argc) input_file = argv[i + 1];
+    args.push_back(argv[i]);
+  }
+  if ((resume || !checkpoint_dir.empty()) && (checkpoint_dir.empty() || input_file.empty())) {
+    if (me == 0) fprintf(stderr, "ERROR: meltdem-lmp: -resume needs -checkpoint DIR N, and both need -in FILE\n");
+    MPI_Finalize();
+    return 1;
+  }
+  args.push_back(nullptr);
+  argc = int(args.size()) - 1;
+  argv = args.data();
 
   try {
     auto *lammps = new LAMMPS(argc, argv, lammps_comm);
     const std::string mismatch = meltdem::lammps_version_mismatch(lammps, MELTDEM_HEADER_LAMMPS_VERSION);
     if (!mismatch.empty()) {
-      int me = 0;
-      MPI_Comm_rank(lammps_comm, &me);
       if (me == 0) fprintf(stderr, "ERROR: %s\n", mismatch.c_str());
       // do not touch the instance further: its layout is not the one we were built for
       MPI_Barrier(lammps_comm);
@@ -37,7 +80,10 @@ int main(int argc, char **argv)
       return 2;
     }
     meltdem::register_lammps_styles(lammps);
-    lammps->input->file();
+    if (checkpoint_dir.empty())
+      lammps->input->file();
+    else
+      meltdem::run_with_checkpoints(lammps, input_file, checkpoint_dir, every, resume);
     delete lammps;
   } catch (fmt::format_error &fe) {
     fprintf(stderr, "fmt::format_error: %s\n", fe.what());

@@ -321,7 +321,8 @@ def field(case, name, dims, internal, bf, vector=False):
 def build(a):
     case = a.case
     if os.path.exists(case):
-        if os.listdir(case) and not os.path.exists(os.path.join(case, "scene.json")):
+        # (.meltdem.lock: the lock `meltdem run` holds on the case while it builds it)
+        if set(os.listdir(case)) - {".meltdem.lock"} and not os.path.exists(os.path.join(case, "scene.json")):
             raise SystemExit(f"lmd-track: {case} exists and is not a scene case; not overwriting it")
         shutil.rmtree(case)
     os.makedirs(case)

@@ -18,6 +18,7 @@ Description
 \*---------------------------------------------------------------------------*/
 
 #include "fvCFD.H"
+#include "exactRestartTime.H"
 #include "dynamicFvMesh.H"
 #include "CMULES.H"
 #include "EulerDdtScheme.H"
@@ -37,6 +38,8 @@ Description
 #include "evaporationModel.H"
 #include "meltdemBalance.H"
 #include "particleCoupling.H"
+#include "caseCheckpoint.H"
+#include "caseLock.H"
 #include "energyTransport.H"
 #include "upwind.H"
 #include "gaussConvectionScheme.H"
@@ -55,12 +58,16 @@ int main(int argc, char *argv[])
 
     #include "addCheckCaseOptions.H"
     #include "setRootCaseLists.H"
-    #include "createTime.H"
+    #include "createExactRestartTime.H"
+
+    // one run per case folder, before anything is read or written
+    Foam::meltdem::caseLock lock(runTime);
     #include "createDynamicFvMesh.H"
     #include "initContinuityErrs.H"
     #include "createDyMControls.H"
     #include "createFields.H"
     #include "createMeltdemFields.H"
+    #include "checkStartFields.H"
     #include "createAlphaFluxes.H"
     #include "initCorrectPhi.H"
     #include "createUfIfPresent.H"
@@ -73,10 +80,15 @@ int main(int argc, char *argv[])
         #include "setInitialDeltaT.H"
     }
 
+    Foam::meltdem::caseCheckpoint checkpoint(runTime);
+
     Info<< "\nStarting time loop\n" << endl;
 
     while (runTime.run())
     {
+        // the last write time is a checkpoint once its function objects ran (run())
+        checkpoint.markComplete();
+
         #include "readDyMControls.H"
 
         if (LTS)
@@ -180,7 +192,7 @@ int main(int argc, char *argv[])
             }
         }
 
-        runTime.write();
+        const bool writeOk = runTime.write();
 
         if (particles.valid())
         {
@@ -191,9 +203,11 @@ int main(int argc, char *argv[])
                 particles->write();
             }
         }
+        checkpoint.written(writeOk);
 
         runTime.printExecutionTime(Info);
     }
+    checkpoint.markComplete();
 
     Info<< "End\n" << endl;
 

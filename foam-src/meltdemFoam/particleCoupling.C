@@ -124,6 +124,12 @@ Foam::meltdem::particleCoupling::particleCoupling
     exchangeTime_(GREAT),
     boundsSet_(false),
     heated_(false),
+    maxInitialId_(0),
+    placedEarly_(0),
+    lostEarly_(0),
+    lostEarlyCount_(0),
+    steps_(0),
+    warnedLost_(false),
     laser_(nullptr),
     haveLocated_(false),
     startHaveLocated_(false)
@@ -194,7 +200,7 @@ Foam::meltdem::particleCoupling::particleCoupling
     const bool resumed = readCheckpoint(lammpsTime, ledgerState);
     const fileName restartFile
     (
-        resumed ? checkpointDir(mesh.time().timeName())/"lammps.restart" : fileName()
+        resumed ? checkpointDir(mesh.time().timeName())/::meltdem::LammpsCouplingHost::kRestartFile : fileName()
     );
     if (resumed)
     {
@@ -217,12 +223,25 @@ Foam::meltdem::particleCoupling::particleCoupling
             << "lammpsInput: " << e.what() << exit(FatalIOError);
     }
 
+    if (!lammps_->resume_limitation().empty())
+    {
+        WarningInFunction
+            << "this run can not be resumed from its checkpoints: "
+            << lammps_->resume_limitation() << endl;
+    }
     checkMaterial(meltdemDict);
     checkDomains();
     checkGravity(mesh, *lammps_, dict_);
     // powder drawn before the coupling starts is already in the particles or pending
     mc::Amounts pendingNow;
     lammps_->insertion_store(drawnBefore_, pendingNow);
+    placedEarly_ = -(drawnBefore_[mc::kMass] - pendingNow[mc::kMass]);
+    {
+        std::vector<mc::ExchangeRecord> now;
+        lammps_->local_particles(now);
+        for (const auto& r : now) maxInitialId_ = std::max(maxInitialId_, r.id);
+        MPI_Allreduce(MPI_IN_PLACE, &maxInitialId_, 1, MPI_INT64_T, MPI_MAX, comm_);
+    }
 
     exchange_.reset(new mc::ParallelExchange(distMesh_, model_, comm_));
     startExchange_.reset(new mc::ParallelExchange(distMesh_, model_, comm_));
@@ -681,6 +700,7 @@ void Foam::meltdem::particleCoupling::book(const functionObjects::meltdemBalance
         L.book(mc::kPending, pending);
     }
     drawnBefore_ = drawn;
+    checkEarlyLosses(drawn, pending);
     if (Pstream::master())
     {
         L.book(mc::kContinuum, mc::make_amounts(b.M, b.H, Eigen::Vector3d(b.P.x(), b.P.y(), b.P.z())));
@@ -748,6 +768,41 @@ void Foam::meltdem::particleCoupling::book(const functionObjects::meltdemBalance
         << s.continuum_error[mc::kMomY] << " " << s.continuum_error[mc::kMomZ] << ")"
         << nl << endl;
     checkBounded();
+}
+
+
+void Foam::meltdem::particleCoupling::checkEarlyLosses
+(
+    const mc::Amounts& drawn,
+    const mc::Amounts& pending
+)
+{
+    // within the first fluid steps, more than half of the inserted powder gone at once
+    const label firstSteps = 100;
+    const scalar share = 0.5;
+    if (warnedLost_ || ++steps_ > firstSteps) return;
+    double lost[2] = {0, 0};
+    for (const auto& r : lost_)
+    {
+        if (r.id <= maxInitialId_) continue;
+        lost[0] += r.mass + r.mass_out;
+        lost[1] += 1;
+    }
+    MPI_Allreduce(MPI_IN_PLACE, lost, 2, MPI_DOUBLE, MPI_SUM, comm_);
+    lostEarly_ += lost[0];
+    lostEarlyCount_ += label(lost[1]);
+    const scalar placed = placedEarly_ + drawn[mc::kMass] - pending[mc::kMass];
+    if (lostEarlyCount_ >= 5 && lostEarly_ > share*placed)
+    {
+        warnedLost_ = true;
+        const boundBox mb(distMesh_.globalBounds());
+        WarningInFunction
+            << lostEarlyCount_ << " of the grains fix powder/insert placed in the first "
+            << steps_ << " fluid steps (" << lostEarly_ << " of " << placed << " kg, more than "
+            << 100*share << " %) left the mesh at once and are booked lost: is the insertion "
+            << "region inside the mesh " << mb << "? Grains outside the mesh are not coupled"
+            << endl;
+    }
 }
 
 

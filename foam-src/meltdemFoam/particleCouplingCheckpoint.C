@@ -3,13 +3,16 @@
 // with the ledger totals of an uninterrupted run (issue 7). The continuum's state is the
 // time folder OpenFOAM writes; the particles' is a LAMMPS restart; the ledger's (previous
 // and cumulative totals) a text file with exact doubles. 'complete' is written last: a
-// checkpoint without it was cut off and is never resumed from.
+// checkpoint without it was cut off and is never resumed from (caseCheckpoint.H).
 #include "particleCoupling.H"
+#include "caseCheckpoint.H"
 
 #include "OSspecific.H"
 #include "Time.H"
 
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
@@ -21,7 +24,7 @@ namespace mc = ::meltdem::coupling;
 
 Foam::fileName Foam::meltdem::particleCoupling::checkpointDir(const word& timeName) const
 {
-    return mesh_.time().globalPath()/"meltdemRestart"/timeName;
+    return caseCheckpoint::dir(mesh_.time(), timeName);
 }
 
 
@@ -46,10 +49,11 @@ bool Foam::meltdem::particleCoupling::readCheckpoint
     std::ostringstream rest;
     rest << in.rdbuf();
     ledgerState = rest.str();
-    if (!isFile(dir/"lammps.restart"))
+    if (!isFile(dir/::meltdem::LammpsCouplingHost::kRestartFile))
     {
         FatalErrorInFunction
-            << "the checkpoint " << dir << " has no lammps.restart" << exit(FatalError);
+            << "the checkpoint " << dir << " has no "
+            << ::meltdem::LammpsCouplingHost::kRestartFile << exit(FatalError);
     }
     return true;
 }
@@ -91,7 +95,14 @@ void Foam::meltdem::particleCoupling::write()
     MPI_Barrier(comm_);
     // the particles ParaView shows beside this time's fields
     lammps_->write_particles(dumps/(runTime.timeName() + ".dump"));
-    lammps_->write_restart(dir/"lammps.restart");
+    try
+    {
+        lammps_->write_checkpoint(dir);
+    }
+    catch (const ::meltdem::LammpsSetupError& e)
+    {
+        FatalErrorInFunction << e.what() << exit(FatalError);
+    }
     if (Pstream::master())
     {
         std::ostringstream state;
@@ -99,17 +110,17 @@ void Foam::meltdem::particleCoupling::write()
         std::snprintf(t, sizeof t, "%a", lammps_->time());
         state << "lammps_time " << t << '\n';
         ledger_->save_state(state);
+        std::ofstream os(dir/"state", std::ios::trunc);
+        os << state.str();
+        os.close();
+        if (!os)
         {
-            std::ofstream os(dir/"state", std::ios::trunc);
-            os << state.str();
-            os.flush();
-            if (!os)
-            {
-                FatalErrorInFunction
-                    << "cannot write the checkpoint " << dir/"state" << exit(FatalError);
-            }
+            FatalErrorInFunction
+                << "cannot write the checkpoint " << dir/"state" << ": "
+                << std::strerror(errno) << " (the disk holding the case is full?)"
+                << exit(FatalError);
         }
-        std::ofstream(dir/"complete") << runTime.timeName() << '\n';
     }
+    // 'complete' follows once the whole write time is written (caseCheckpoint)
     MPI_Barrier(comm_);
 }

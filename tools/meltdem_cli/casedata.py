@@ -65,7 +65,14 @@ def balance_rows(case):
         for d in parts[1:]:
             if d.dtype.names != rows.dtype.names:
                 continue
-            rows = np.concatenate([rows[rows["time"] < d["time"][0]], d])
+            t0 = d["time"][0]
+            at = np.isclose(rows["time"], t0, rtol=1e-12, atol=0)
+            if "deltaT" in d.dtype.names and d["deltaT"][0] == 0 and at.any():
+                # a resumed segment's first row is its start state (no step): the row the run
+                # it continues wrote at that time has the step's flows and sources
+                rows = np.concatenate([rows[(rows["time"] < t0) | at][:np.argmax(at) + 1], d[1:]])
+            else:
+                rows = np.concatenate([rows[rows["time"] < t0], d])
         return name, rows
     return None, None
 

@@ -27,6 +27,9 @@ DIMENSIONS = {"T": "0 0 0 1 0 0 0", "U": "0 1 -1 0 0 0 0", "p_rgh": "1 -1 -2 0 0
               "alpha.metal": "0 0 0 0 0 0 0", "p": "1 -1 -2 0 0 0 0"}
 G_DIMENSIONS = "0 1 -2 0 0 0 0"
 GREAT = 1e300
+# the values a field may take (meltdemFoam stops before the first step otherwise)
+# (alpha: 1e-6 beyond the bounds, what MULES's bounded solution may leave, as the solver allows)
+FIELD_RANGE = {"alpha.metal": (0.0, 1.0, 1e-6, "a volume fraction"), "T": (0.0, None, 0.0, "an absolute temperature")}
 
 
 class Report:
@@ -81,16 +84,52 @@ def scene_vars(case):
 
 
 def _read(case, rel, rep, required=True):
+    """The parsed dictionary, or None with the problem reported: missing, unreadable, a syntax
+    error (OpenFOAM's own parser, foamDictionary, names the line), nan/inf values."""
     p = os.path.join(case, rel)
     if not os.path.isfile(p):
         if required:
             rep.bad(rel, "file missing")
         return None
     try:
-        return fd.read(p)
+        d = fd.read(p)
+    except OSError as e:
+        rep.bad(rel, f"cannot be read ({e.strerror})")
+        return None
     except fd.FoamDictError as e:
         rep.bad(rel, f"cannot be parsed ({e})")
         return None
+    syntax = foam_syntax_error(p)
+    if syntax:
+        rep.bad(rel, f"cannot be parsed by OpenFOAM: {syntax}")
+        return None
+    for where, tok in fd.non_finite(d):
+        rep.bad(rel, f"{where}: {tok} is not a number")
+    return d
+
+
+def foam_syntax_error(path):
+    """OpenFOAM's parser on a dictionary file (foamDictionary): its error with the line, '' when
+    the file parses (or foamDictionary is not installed)."""
+    import shutil
+    import subprocess
+    exe = shutil.which("foamDictionary")
+    if not exe:
+        return ""
+    env = dict(os.environ)
+    env.setdefault("WM_PROJECT_DIR", "/usr/share/openfoam")
+    try:
+        r = subprocess.run([exe, "-keywords", path], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
+                           stdin=subprocess.DEVNULL, text=True, env=env, timeout=60)
+    except (OSError, subprocess.TimeoutExpired):
+        return ""
+    if r.returncode == 0:
+        return ""
+    lines = [x.strip() for x in r.stderr.splitlines() if x.strip()]
+    msg = next((x for i, x in enumerate(lines) if i and "FOAM FATAL" in lines[i - 1]), "")
+    at = next((x for x in lines if x.startswith("file:")), "")
+    line = at.rsplit(" at line ", 1)[-1].rstrip(".") if " at line " in at else ""
+    return f"{msg}{' (line ' + line + ')' if line else ''}" or "syntax error"
 
 
 NON_NEGATIVE = {"L", "beta", "power"}   # may be 0 (meltdemProperties::readPositive allowZero)
@@ -104,7 +143,9 @@ def _need(d, keys, rel, rep, prefix="", positive=False):
         if fd.value(d, k) is None:
             rep.bad(rel, f"{prefix}{k} missing")
         elif v is None:
-            rep.bad(rel, f"{prefix}{k} is not a number ({' '.join(map(str, d[k]))})")
+            toks = [t for t in fd.value(d, k) if not isinstance(t, list)]
+            rep.bad(rel, f"{prefix}{k} is not a number ({' '.join(map(str, d[k]))})"
+                    + ("; a missing ';' after it?" if len(toks) > 2 else ""))
         elif positive and (v < 0 or (v == 0 and k not in NON_NEGATIVE)):
             rep.bad(rel, f"{prefix}{k} = {v:g} must be {'non-negative' if k in NON_NEGATIVE else 'positive'}")
         else:
@@ -170,7 +211,16 @@ def check_lammps(case, rel, rep, mesh=None, coupled=False, overrides=None, g=Non
     if not os.path.isfile(p):
         rep.bad(rel, "file missing (LAMMPS input)")
         return None
-    lmp = LammpsInput(p, overrides)
+    try:
+        lmp = LammpsInput(p, overrides)
+    except OSError as e:
+        rep.bad(rel, f"cannot be read ({e.strerror}{': ' + e.filename if e.filename and e.filename != p else ''})")
+        return None
+    for inc, problem in lmp.includes:
+        if problem:
+            rep.bad(rel, problem)
+        else:
+            rep.ok(f"{rel}: include {inc} read in place")
     u = lmp.units()
     if u != "si":
         rep.bad(rel, f"units {u or '(none: LAMMPS default lj)'}: MeltDEM styles and the coupling need 'units si'")
@@ -263,6 +313,45 @@ def check_laser(d, mesh, rep, rel):
         rep.ok(f"{rel}: laser path ({len(pts)} point(s)) inside the mesh")
 
 
+def field_values(path):
+    """(internal and boundary values) of an ASCII field file as one list of floats, 'binary' for a
+    binary one, or a text naming what is not a number."""
+    import re
+    text = open(path, errors="replace").read()
+    if re.search(r"format\s+binary", text[:4096]):
+        return "binary"
+    vals = []
+    for m in re.finditer(r"\b(internalField|value)\s+(uniform\s+([^;]+);|nonuniform\s+List<scalar>\s*\d*\s*\(([^)]*)\))",
+                         text):
+        toks = (m.group(3) or m.group(4) or "").split()
+        for t in toks:
+            try:
+                vals.append(float(t))
+            except ValueError:
+                return f"{m.group(1)}: '{t}' is not a number"
+    return vals
+
+
+def check_field_range(case, rel, rng, rep):
+    lo, hi, tol, what = rng
+    try:
+        vals = field_values(os.path.join(case, rel))
+    except OSError as e:
+        rep.bad(rel, f"cannot be read ({e.strerror})")
+        return
+    if vals == "binary":
+        rep.note(f"{rel}: binary field, values not checked (meltdemFoam checks them at start)")
+        return
+    if isinstance(vals, str):
+        rep.bad(rel, vals)
+        return
+    import math
+    bad = [v for v in vals if not math.isfinite(v) or v < lo - tol or (hi is not None and v > hi + tol)]
+    if bad:
+        rng_txt = f"[{lo:g}, {hi:g}]" if hi is not None else f">= {lo:g}"
+        rep.bad(rel, f"{len(bad)} value(s) outside {rng_txt} ({what}), e.g. {bad[0]:g}")
+
+
 def check_foam(case, rep):
     ctl = _read(case, "system/controlDict", rep)
     if ctl is not None:
@@ -270,7 +359,8 @@ def check_foam(case, rep):
             if fd.value(ctl, k) is None:
                 rep.bad("system/controlDict", f"{k} missing")
             elif fd.number(ctl, k) is None:
-                rep.bad("system/controlDict", f"{k} is not a number")
+                rep.bad("system/controlDict", f"{k} is not a number ({' '.join(map(str, fd.value(ctl, k)))})"
+                        + ("; a missing ';' after it?" if len(fd.value(ctl, k)) > 1 else ""))
         e, s = fd.number(ctl, "endTime"), fd.number(ctl, "startTime")
         if e is not None and s is not None and e <= s:
             rep.bad("system/controlDict", f"endTime {e:g} is not after startTime {s:g}")
@@ -302,9 +392,11 @@ def check_foam(case, rep):
             if not isinstance(sub, dict):
                 rep.bad("constant/transportProperties", f"{ph}: sub-dictionary missing")
                 continue
-            _need(sub, ("nu", "rho"), "constant/transportProperties", rep, f"{ph}.")
+            _need(sub, ("nu", "rho"), "constant/transportProperties", rep, f"{ph}.", positive=True)
         if fd.value(tp, "sigma") is None:
             rep.bad("constant/transportProperties", "sigma missing")
+        elif fd.number(tp, "sigma") is not None and fd.number(tp, "sigma") < 0:
+            rep.bad("constant/transportProperties", f"sigma = {fd.number(tp, 'sigma'):g} must be non-negative")
         rep.ok("constant/transportProperties: phases, nu, rho, sigma")
     turb = _read(case, "constant/turbulenceProperties", rep)
     if turb is not None:
@@ -373,8 +465,10 @@ def check_foam(case, rep):
         got = " ".join(dims[0][:7]) if dims and isinstance(dims[0], list) else None
         if got is None:
             rep.bad(rel0, "dimensions missing")
-        elif [float(x) for x in got.split()] != [float(x) for x in DIMENSIONS[f].split()]:
+        elif [fd.to_float(x) for x in got.split()] != [float(x) for x in DIMENSIONS[f].split()]:
             rep.bad(rel0, f"dimensions [{got}] are not the SI dimensions of {f} [{DIMENSIONS[f]}]")
+        if f in FIELD_RANGE:
+            check_field_range(case, rel0, FIELD_RANGE[f], rep)
     rep.ok("0/: " + ", ".join(fields) + " (SI dimensions)")
 
     if physics.get("particles") and md is not None:
@@ -398,6 +492,9 @@ def check(case):
     rep = Report()
     case = os.path.abspath(case)
     kind = case_kind(case)
+    if any(c.isspace() for c in case):
+        rep.bad(case, "the case path has white space, which OpenFOAM's file names cannot hold (meltdemFoam "
+                      "would stop): move or rename the case folder")
     if not os.path.isdir(case):
         rep.bad(case, "no such folder")
     elif kind == "foam":

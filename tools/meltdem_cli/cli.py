@@ -85,6 +85,20 @@ def parser():
     return ap
 
 
+def os_error_text(e):
+    """An operating-system error in words: what failed on which file."""
+    import errno
+    where = f" ({e.filename})" if getattr(e, "filename", None) else ""
+    if e.errno == errno.ENOSPC:
+        return (f"the disk is full: no space left to write{where}. Free disk space; a coupled run resumes "
+                f"from its last complete checkpoint with: meltdem run CASE --resume")
+    if e.errno in (errno.EACCES, errno.EPERM):
+        return f"permission denied{where}: the file or folder cannot be read or written by this user"
+    if e.errno == errno.EROFS:
+        return f"read-only file system{where}"
+    return f"{e.strerror or e}{where}"
+
+
 def main(argv=None):
     a = parser().parse_args(argv)
     if getattr(a, "np", 1) < 1:
@@ -94,6 +108,9 @@ def main(argv=None):
         return a.func(a)
     except StepError as e:
         print(f"meltdem: ERROR: {e}", file=sys.stderr, flush=True)
+        return 1
+    except OSError as e:
+        print(f"meltdem: ERROR: {os_error_text(e)}", file=sys.stderr, flush=True)
         return 1
     except BrokenPipeError:          # `meltdem list | head`
         sys.stdout = open(os.devnull, "w")

@@ -8,6 +8,7 @@ headers). Values are kept as token lists; lists in parentheses become Python lis
 Not handled (reported as unreadable by the caller, never guessed): #include, #calc, $macros
 other than plain top-level $name substitutions.
 """
+import math
 import os
 import re
 
@@ -53,6 +54,8 @@ def _parse_dict(tokens, i, close):
         t = tokens[i]
         if t == close:
             return d, i + 1
+        if t in ("}", ")", "]"):
+            raise FoamDictError(f"unexpected '{t}' (unbalanced brackets)")
         if t == ";":
             i += 1
             continue
@@ -90,10 +93,32 @@ def read(path):
 
 
 def to_float(tok):
+    """The finite number of a token, None otherwise (nan and inf are not numbers a case may hold)."""
     try:
-        return float(tok)
+        v = float(tok)
     except (TypeError, ValueError):
         return None
+    return v if math.isfinite(v) else None
+
+
+NON_FINITE = {"nan", "+nan", "-nan", "inf", "+inf", "-inf", "infinity", "+infinity", "-infinity"}
+
+
+def non_finite(d, prefix=""):
+    """[(entry path, token)] of the nan/inf tokens anywhere in a parsed dictionary."""
+    out = []
+
+    def walk(v, where):
+        if isinstance(v, dict):
+            for k, x in v.items():
+                walk(x, f"{where}{k}" if not where else f"{where}.{k}")
+        elif isinstance(v, list):
+            for x in v:
+                walk(x, where)
+        elif isinstance(v, str) and v.lower() in NON_FINITE:
+            out.append((where, v))
+    walk(d, prefix)
+    return out
 
 
 def value(d, key):
@@ -103,11 +128,17 @@ def value(d, key):
 
 
 def number(d, key):
-    """The scalar of 'key value;' (the last token, so 'nu [0 2 -1 0 0 0 0] 1e-6;' works too)."""
+    """The scalar of 'key value;', also 'key [dims] value;' and 'key name [dims] value;'; None when
+    missing or not one finite number (e.g. 'endTime 1e-5 writeInterval 1e-6;', a missing ';')."""
     v = value(d, key)
-    if not v:
+    if not v or isinstance(v[-1], list):
         return None
-    return to_float(v[-1]) if not isinstance(v[-1], list) else None
+    head = v[:-1]
+    if head and isinstance(head[-1], list):
+        head = head[:-1]
+    if len(head) > 1 or (head and isinstance(head[0], list)) or (head and to_float(head[0]) is not None):
+        return None
+    return to_float(v[-1])
 
 
 def vector(tok):

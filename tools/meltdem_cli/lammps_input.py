@@ -27,6 +27,7 @@ class LammpsInput:
         self.vars = dict(overrides or {})
         self.commands = []   # (line number, [words]) after substitution
         self.unresolved = []
+        self.includes = []   # include files read in place (path, or the problem)
         self._read(path)
 
     def _subst(self, line):
@@ -41,7 +42,7 @@ class LammpsInput:
         return re.sub(r"\$\(([^)]*)\)", lambda m: repr(_eval(m.group(1))) if _eval(m.group(1)) is not None
                       else m.group(0), line)
 
-    def _read(self, path):
+    def _read(self, path, depth=0):
         with open(path, errors="replace") as f:
             raw = f.read().splitlines()
         buf, start = "", 0
@@ -71,6 +72,17 @@ class LammpsInput:
                         self.vars[name] = words[3]
                 continue
             words = self._subst(text).split()
+            if words[0] == "include" and len(words) > 1:
+                # read in place, as LAMMPS does (relative to the case folder, where it runs)
+                inc = os.path.join(self.dir, words[1])
+                if "$" in words[1] or not os.path.isfile(inc) or depth > 16:
+                    self.includes.append((words[1], f"line {start}: include {words[1]}: file not found"
+                                          if "$" not in words[1] else f"line {start}: include {words[1]}: "
+                                          "a file name with variables is not read ahead"))
+                else:
+                    self.includes.append((words[1], None))
+                    self._read(inc, depth + 1)
+                continue
             self.commands.append((start, words))
 
     def find(self, cmd):

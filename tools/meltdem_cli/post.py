@@ -136,7 +136,15 @@ def postprocess(case_dir, example=None, fields=True, quiet=True):
         s["example"] = example
     if led is not None:
         try:
-            _put(s, sources, summary.ledger_numbers(led), "ledger.csv")
+            nums = summary.ledger_numbers(led)
+            unbooked = summary.momentum_unbooked(case)
+            if unbooked:
+                # ledger.csv has the columns; a balance that cannot close is not a result
+                for k in [k for k in nums if k.endswith("_momentum_error")]:
+                    del nums[k]
+                notes.append("momentum balance not shown: the ledger does not book the impulse of "
+                             + "; ".join(unbooked))
+            _put(s, sources, nums, "ledger.csv")
         except Exception as e:   # a ledger of another layout: name it, keep the rest
             notes.append(f"ledger numbers: {type(e).__name__}: {e}")
     try:

@@ -5,9 +5,12 @@
     -> decompose (--np > 1) -> ONE job: [mpirun -np N] meltdemFoam [-parallel] | meltdem-lmp -in IN
     -> reconstructPar (N > 1) -> scene.py analyse (examples) -> post-processing (meltdem_cli.post)
 
---resume (coupled/continuum cases): the latest time T with CASE/meltdemRestart/T/complete and the
-OpenFOAM time folder (CASE/T or processor0/T); system/controlDict gets startFrom startTime;
-startTime T (foamDictionary), then the solver is relaunched without meshing or decomposing.
+--resume: coupled and continuum-only cases: the latest time T with CASE/meltdemRestart/T/complete
+and the OpenFOAM time folder (CASE/T or processor0/T); system/controlDict gets startFrom startTime;
+startTime T (foamDictionary), what the stopped run wrote after T is removed, and the solver is
+relaunched without meshing or decomposing. DEM-only cases: meltdem-lmp -checkpoint writes
+CASE/meltdemRestart/<step>/ during the run; -resume continues from the latest complete one.
+One run per case: the case is locked while it runs (caselock.py).
 """
 import ctypes
 import json
@@ -18,6 +21,7 @@ import subprocess
 import sys
 import time
 
+from . import caselock
 from . import check as chk
 from . import examples as ex
 from . import foamdict as fd
@@ -58,16 +62,50 @@ def tool(cmd, case, log):
         raise StepError(f"{cmd[0]} failed (rc {r.returncode}){': ' + why if why else ''}; read {os.path.join(case, log)}")
 
 
-def launch(cmd, case, log, tracker):
-    """Run the solver job with the progress line; returns (rc, wall seconds)."""
+WALL_FILE = "wall_seconds"
+
+
+def wall_segments(case):
+    """[(seconds, ranks, how)] of the runs of a case so far (CASE/wall_seconds: the total and the
+    ranks on its first line, then one '# segment seconds ranks how' line per launch)."""
+    out = []
+    try:
+        for ln in open(os.path.join(case, WALL_FILE)):
+            w = ln.split()
+            if len(w) >= 4 and w[0] == "#" and w[1] == "segment":
+                out.append((float(w[2]), int(w[3]), " ".join(w[4:])))
+    except (OSError, ValueError):
+        return []
+    return out
+
+
+def write_wall(case, segments):
+    """CASE/wall_seconds: the total over all segments (a resumed run's included) and the ranks."""
+    total = sum(s for s, _, _ in segments)
+    ranks = segments[-1][1] if segments else 1
+    text = f"{total:.1f} {ranks}\n" + "".join(f"# segment {s:.1f} {n} {how}\n" for s, n, how in segments)
+    tmp = os.path.join(case, WALL_FILE + ".tmp")
+    with open(tmp, "w") as f:
+        f.write(text)
+    os.replace(tmp, os.path.join(case, WALL_FILE))
+
+
+def launch(cmd, case, log, tracker, np_=1, earlier=(), how="run"):
+    """Run the solver job with the progress line; returns (rc, wall seconds). CASE/wall_seconds
+    is kept current while it runs (a killed run's time counts in the resumed run's total)."""
     t0 = time.time()
     rep = Reporter(tracker)
+    earlier = list(earlier)
+    last = 0.0
     with open(os.path.join(case, log), "w") as f:
         p = subprocess.Popen(cmd, cwd=case, stdout=f, stderr=subprocess.STDOUT, env=dict(env(), PWD=case),
                              preexec_fn=_die_with_parent)
         try:
             while p.poll() is None:
                 rep.update()
+                if time.time() - last > 5:
+                    last = time.time()
+                    write_wall(case, earlier + [(last - t0, np_, how)])
                 time.sleep(0.5)
         except KeyboardInterrupt:
             p.send_signal(signal.SIGTERM)
@@ -77,7 +115,9 @@ def launch(cmd, case, log, tracker):
                 p.kill()
             raise
         rep.update(final=True)
-    return p.returncode, time.time() - t0
+    wall = time.time() - t0
+    write_wall(case, earlier + [(wall, np_, how)])
+    return p.returncode, wall
 
 
 def mpirun(np_):
@@ -92,11 +132,44 @@ def failure_reason(case, log):
         return ""
     for i, ln in enumerate(lines):
         if "FOAM FATAL" in ln:
-            rest = [x.strip() for x in lines[i + 1:i + 8] if x.strip() and not x.strip().startswith(("From ", "in file"))]
-            return _clip(rest[0] if rest else ln.strip())
+            block = [x.strip() for x in lines[i + 1:i + 12]]
+            rest = [x for x in block if x and not x.startswith(("From ", "in file", "file:", "at line"))]
+            msg = rest[0] if rest else ln.strip()
+            # a FatalIOError names the dictionary: "file: CASE/constant/x at line N."
+            where = next((x for x in block if x.startswith("file:")), None)
+            if where:
+                loc = where[len("file:"):].strip().rstrip(".")
+                msg = f"{loc.replace(case + os.sep, '')}: {msg}"
+            return _clip(msg)
         if ln.startswith("ERROR") or " ERROR:" in ln:
             return _clip(ln.strip())
     return ""
+
+
+def solver_warnings(case, log, limit=5):
+    """The messages of the solver's warnings ('--> FOAM Warning' blocks), each once."""
+    try:
+        lines = open(os.path.join(case, log), errors="replace").read().splitlines()
+    except OSError:
+        return []
+    out = []
+    for i, ln in enumerate(lines):
+        if "FOAM Warning" not in ln:
+            continue
+        body = []
+        for x in lines[i + 1:i + 12]:
+            x = x.strip()
+            if x.startswith(("From ", "in file")):
+                continue
+            if not x:
+                if body:
+                    break
+                continue
+            body.append(x)
+        msg = _clip(" ".join(body))
+        if msg and msg not in out:
+            out.append(msg)
+    return out[:limit]
 
 
 def _clip(text, n=320):
@@ -195,10 +268,57 @@ def _set_control(case, entries):
         raise StepError(f"could not set {entries} in {cd}")
 
 
+def keep_log(case, log):
+    """A resumed run's log is new: the one of the run it continues becomes log.X.1 (.2, ...)."""
+    p = os.path.join(case, log)
+    if not os.path.isfile(p):
+        return
+    n = 1
+    while os.path.exists(f"{p}.{n}"):
+        n += 1
+    os.replace(p, f"{p}.{n}")
+    say(f"the log of the run it continues: {log}.{n}")
+
+
+def clear_after_checkpoint(case, t):
+    """What a killed run wrote past the checkpoint it is resumed from (time folders, checkpoints,
+    particle frames): the resumed run writes them again."""
+    later = [os.path.join(case, d) for d in fd.time_dirs(case) if float(d) > t]
+    for p in processor_dirs(case):
+        later += [os.path.join(case, p, d) for d in fd.time_dirs(os.path.join(case, p)) if float(d) > t]
+    rdir = os.path.join(case, RESTART_DIR)
+    if os.path.isdir(rdir):
+        later += [os.path.join(rdir, d) for d in fd.time_dirs(rdir) if float(d) > t]
+    pdir = os.path.join(case, "particles")
+    if os.path.isdir(pdir):
+        for f in os.listdir(pdir):
+            try:
+                if f.endswith(".dump") and float(f[:-5]) > t:
+                    later.append(os.path.join(pdir, f))
+            except ValueError:
+                pass
+    if later:
+        say(f"removing what the stopped run wrote after t = {t:g} s ({len(later)} folder(s)/file(s))")
+    for p in later:
+        if os.path.isdir(p):
+            shutil.rmtree(p)
+        else:
+            os.remove(p)
+
+
 def clear_earlier_output(case, start):
     """Time folders after startTime, checkpoints and processor folders of an earlier run (the new
     run rewrites them; stale ones would be read back by --resume and the post-processing)."""
     later = [t for t in fd.time_dirs(case) if float(t) > start]
+    # the function objects' segments of resumed runs and the logs of the runs they continued
+    pp = os.path.join(case, "postProcessing")
+    for fo in (os.listdir(pp) if os.path.isdir(pp) else []):
+        for seg in fd.time_dirs(os.path.join(pp, fo)):
+            if float(seg) > start:
+                shutil.rmtree(os.path.join(pp, fo, seg))
+    for f in os.listdir(case):
+        if f.startswith("log.") and f.rsplit(".", 1)[-1].isdigit():
+            os.remove(os.path.join(case, f))
     rdir = os.path.join(case, RESTART_DIR)
     # processor folders are only output when the start fields are in the case itself
     has_start = any(float(t) == start for t in fd.time_dirs(case))
@@ -234,6 +354,8 @@ def run_foam(case, np_, resume, rebuilt=False):
         say(f"resuming from the checkpoint at t = {t} s ({RESTART_DIR}/{t}; system/controlDict: "
             f"startFrom startTime; startTime {t})")
         t_start = float(t)
+        clear_after_checkpoint(case, t_start)
+        keep_log(case, "log.meltdemFoam")
     else:
         restore_start_time(case)
         cd = fd.read(os.path.join(case, "system", "controlDict"))
@@ -258,18 +380,20 @@ def run_foam(case, np_, resume, rebuilt=False):
     say(f"running {' '.join(cmd[-2:] if np_ > 1 else cmd[:1]).replace(bin_dir() + '/', '')} on {np_} rank(s), "
         f"t = {t_start:g} -> {t_end:g} s (log.meltdemFoam)")
     tracker = FoamProgress(os.path.join(case, "log.meltdemFoam"), t_end, t_start)
+    earlier = wall_segments(case) if resume else []
     try:
-        rc, wall = launch(cmd, case, "log.meltdemFoam", tracker)
+        rc, wall = launch(cmd, case, "log.meltdemFoam", tracker, np_, earlier,
+                          f"resumed at t = {t_start:g} s" if resume else "run")
     except KeyboardInterrupt:
         say(f"interrupted at t = {tracker.t:g} s; continue from the last checkpoint with: meltdem run {case} --resume")
         raise
-    with open(os.path.join(case, "wall_seconds"), "w") as f:
-        f.write(f"{wall:.1f} {np_}\n")
     if rc != 0:
         why = failure_reason(case, "log.meltdemFoam")
         raise StepError(f"meltdemFoam failed (rc {rc}) at t = {tracker.t:g} s{': ' + why if why else ''}; read "
                         f"{os.path.join(case, 'log.meltdemFoam')}"
                         + (f" (resume: meltdem run {case} --resume)" if os.path.isdir(os.path.join(case, RESTART_DIR)) else ""))
+    for w in solver_warnings(case, "log.meltdemFoam"):
+        say(f"WARNING (log.meltdemFoam): {w}")
     say(f"meltdemFoam finished in {wall:.0f} s wall")
     if resume:
         restore_start_time(case)
@@ -288,11 +412,38 @@ def _wedge(case):
 
 
 # ----------------------------------------------------------------------------------- DEM case
+def dem_checkpoints(case):
+    """Steps of the complete checkpoints of a DEM-only run (meltdem-lmp -checkpoint), ascending."""
+    rdir = os.path.join(case, RESTART_DIR)
+    out = []
+    for d in os.listdir(rdir) if os.path.isdir(rdir) else []:
+        if d.isdigit() and os.path.isfile(os.path.join(rdir, d, "complete")):
+            out.append(int(d))
+    return sorted(out)
+
+
+def checkpoint_every(runs):
+    """DEM steps between checkpoints: a tenth of the input's runs, at least 1000 steps (10000 when
+    the run lengths are not known before the run)."""
+    total = sum(abs(r) for r in runs) if runs else 0
+    return max(1000, total // 10) if total else 10000
+
+
 def run_dem(case, np_, resume):
     inp = chk.dem_input(case)
     if resume:
-        raise StepError("--resume is not supported for DEM-only cases (meltdem-lmp alone): their inputs write "
-                        "no checkpoint that meltdem could restart from; run the case again without --resume")
+        steps = dem_checkpoints(case)
+        if not steps:
+            raise StepError(f"cannot resume: no complete checkpoint in {os.path.join(case, RESTART_DIR)} (the run "
+                            f"was stopped before its first checkpoint, or was not started by meltdem run)")
+        say(f"resuming from the checkpoint at step {steps[-1]} ({RESTART_DIR}/{steps[-1]})")
+        for log in ("log.lammps", "out.lammps"):
+            keep_log(case, log)
+    else:
+        shutil.rmtree(os.path.join(case, RESTART_DIR), ignore_errors=True)
+        for f in os.listdir(case):
+            if f.startswith(("log.", "out.")) and f.rsplit(".", 1)[-1].isdigit():
+                os.remove(os.path.join(case, f))
     from .lammps_input import LammpsInput
     overrides = chk.scene_vars(case)
     lmp_in = LammpsInput(os.path.join(case, inp), overrides)
@@ -304,22 +455,25 @@ def run_dem(case, np_, resume):
     cmd = (["stdbuf", "-oL"] if shutil.which("stdbuf") else []) + [lmp, "-in", inp, "-log", "log.lammps"]
     for k, v in overrides.items():
         cmd += ["-var", k, v]
+    runs = lmp_in.runs()
+    # checkpoints the run resumes from (`meltdem run CASE --resume`); a resumed run keeps the
+    # interval it was started with (it is in the checkpoint)
+    cmd += ["-checkpoint", RESTART_DIR, str(checkpoint_every(runs))] + (["-resume"] if resume else [])
     if np_ > 1:
         cmd = mpirun(np_) + cmd
-    runs = lmp_in.runs()
     halt = lmp_in.fixes("halt")
     say(f"running meltdem-lmp -in {inp} on {np_} rank(s)"
         + (f", {'at most ' if halt else ''}{sum(r for r in runs if r > 0)} steps" if runs and min(runs) >= 0 else "")
         + (f" (fix {halt[0][1][1]} halt ends it when its condition is met: the ETA is an upper bound)" if halt else "")
         + " (log.lammps)")
     rc, wall = launch(cmd, case, "out.lammps", LammpsProgress(os.path.join(case, "out.lammps"), lmp_in.timestep(),
-                                                                     runs))
-    with open(os.path.join(case, "wall_seconds"), "w") as f:
-        f.write(f"{wall:.1f} {np_}\n")
+                                                                     runs),
+                      np_, wall_segments(case) if resume else [], "resumed" if resume else "run")
     if rc != 0:
         why = failure_reason(case, "log.lammps") or failure_reason(case, "out.lammps")
         raise StepError(f"meltdem-lmp failed (rc {rc}){': ' + why if why else ''}; read "
-                        f"{os.path.join(case, 'log.lammps')} (screen output: out.lammps)")
+                        f"{os.path.join(case, 'log.lammps')} (screen output: out.lammps)"
+                        + (f" (resume: meltdem run {case} --resume)" if dem_checkpoints(case) else ""))
     say(f"meltdem-lmp finished in {wall:.1f} s wall")
     return wall
 
@@ -375,23 +529,44 @@ def postprocess(case, example=None):
 
 # ------------------------------------------------------------------------------------- main
 def run(target, case=None, np_=1, resume=False, size="ci", check_first=True, analyse=True):
-    """Returns 0; raises StepError with the one-line reason."""
+    """Returns 0; raises StepError with the one-line reason. The case is locked for the whole run
+    (caselock.py): a second run of the same case stops before it touches anything."""
     name = target if target in ex.names() and not (os.sep in target or target.startswith(".")) else None
     if name is None and not os.path.isdir(target):
         raise StepError(f"'{target}' is neither an example ({', '.join(ex.names())}) nor a case folder")
     if name:
         case = os.path.abspath(case or os.path.join(os.getcwd(), name))
+        if resume and not os.path.isdir(case):
+            raise StepError(f"cannot resume {name}: no case folder {case} (run it first, or give --case DIR)")
+    else:
+        case = os.path.abspath(target)
+    if any(c.isspace() for c in case):
+        raise StepError(f"the case path '{case}' has white space, which OpenFOAM's file names cannot hold; "
+                        f"move or rename the case folder")
+    os.makedirs(case, exist_ok=True)
+    lock = caselock.CaseLock(case, f"meltdem run {target}{' --resume' if resume else ''}")
+    try:
+        lock.acquire()
+    except caselock.CaseLocked as e:
+        raise StepError(str(e))
+    try:
+        if lock.stale:
+            say(f"took over the case lock of a run that ended without releasing it ({lock.stale})")
+        return _run(name, target, case, lock, np_, resume, size, check_first, analyse)
+    finally:
+        lock.release()
+
+
+def _run(name, target, case, lock, np_, resume, size, check_first, analyse):
+    if name:
         if resume:
-            if not os.path.isdir(case):
-                raise StepError(f"cannot resume {name}: no case folder {case} (run it first, or give --case DIR)")
             say(f"resuming {name} in {case} (not rebuilt)")
         else:
             say(f"building {name} ({size}) into {case} (log.build)")
             ex.build(name, case, size)
-    else:
-        case = os.path.abspath(target)
-        if size == "full":
-            say("--full applies to example names only: the case folder runs as it is")
+            lock.refresh()
+    elif size == "full":
+        say("--full applies to example names only: the case folder runs as it is")
     t_start = time.time()
     kind = chk.case_kind(case)
     if kind is None and name and os.path.isfile(os.path.join(ex.examples_dir(), name, "scene.py")):

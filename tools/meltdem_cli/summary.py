@@ -9,6 +9,7 @@ themselves) has a number, that number is taken as it is and its key named as the
 run first when the example is known and its summary is missing. The scene's keys stay in
 summary.json beside the common ones (a later post-processing keeps them)."""
 import contextlib
+import glob
 import importlib.util
 import io
 import json
@@ -250,6 +251,51 @@ def ledger_numbers(led):
     return s
 
 
+# fixes that move particles without a force the ledger books, or only book what they add
+_MOMENTUM_NEUTRAL_FIXES = ("nve", "nve/sphere", "nve/limit", "powder/insert", "powder/dt", "print", "halt",
+                           "balance", "ave/time", "ave/chunk", "ave/histo", "ave/correlate", "ave/atom")
+# meltdemFoam terms that exert forces the continuum's balance does not book
+_MOMENTUM_TERMS = ("darcy", "surfaceTension", "marangoni", "recoil", "buoyancy")
+
+
+def momentum_unbooked(case):
+    """Why the ledger's momentum balance does not close by construction (impulses it does not book:
+    gravity on the particles, walls, the solid-metal contact, force fixes, the continuum's Darcy,
+    surface, recoil and buoyancy forces); [] when it books every impulse."""
+    from .lammps_input import LammpsInput
+    from . import foamdict as fd
+    why = []
+    ins = sorted(glob.glob(os.path.join(case, "in.*")))
+    for p in ins:
+        try:
+            lmp = LammpsInput(p)
+        except OSError:
+            continue
+        name = os.path.basename(p)
+        for _, w in lmp.find("fix"):
+            if len(w) < 4:
+                continue
+            style = w[3]
+            if style == "gravity":
+                why.append(f"gravity on the particles ({name}: fix {w[1]} gravity)")
+            elif style.startswith("wall"):
+                why.append(f"walls ({name}: fix {w[1]} {style})")
+            elif style == "powder/melt":
+                if "solid_metal" in w[4:]:
+                    why.append(f"the solid-metal contact ({name}: fix {w[1]} powder/melt solid_metal)")
+            elif not style.startswith(_MOMENTUM_NEUTRAL_FIXES):
+                why.append(f"forces of {name}: fix {w[1]} {style}")
+    try:
+        md = fd.read(os.path.join(case, "constant", "meltdemProperties"))
+        ph = md.get("physics") if isinstance(md.get("physics"), dict) else {}
+        on = [k for k in _MOMENTUM_TERMS if fd.switch(ph, k)]
+        if on:
+            why.append(f"the continuum's {', '.join(on)} force(s) (constant/meltdemProperties physics)")
+    except (OSError, fd.FoamDictError):
+        pass
+    return why
+
+
 def laser_numbers(bal, pcsv, bal_name="meltdemBalance"):
     """(values, sources): laser energy absorbed by the continuum (meltdemBalance laserEnergy_cum)
     and the particles (particles.csv laser_heat), the particles' molten mass (particles.csv)."""
@@ -375,6 +421,8 @@ LABELS = [
     ("particle_molten_mass_kg", "molten particle mass (fix powder/melt)", "kg"),
     ("laser_energy_absorbed_J", "laser energy absorbed", "J"),
     ("laser_energy_continuum_J", "  by the continuum", "J"), ("laser_energy_particles_J", "  by the particles", "J"),
+    ("particles_lost", "particles lost (left the mesh, or inserted outside it)", ""),
+    ("particle_metal_lost_kg", "  their metal", "kg"),
     ("worst_step_system_mass_error", "worst per-step system mass error", ""),
     ("worst_step_system_energy_error", "worst per-step system energy error", ""),
     ("worst_step_system_momentum_error", "worst per-step system momentum error", ""),

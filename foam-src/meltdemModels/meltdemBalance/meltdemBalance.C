@@ -10,6 +10,7 @@
 #include "IOdictionary.H"
 #include "Time.H"
 #include "addToRunTimeSelectionTable.H"
+#include "exactScalar.H"
 
 // * * * * * * * * * * * * * * Static Data Members * * * * * * * * * * * * * //
 
@@ -177,12 +178,18 @@ void Foam::functionObjects::meltdemBalance::start()
     laser_ = energy_ && foundObject<volScalarField>(laserName_);
     evap_ = energy_ && foundObject<volScalarField>(evapName_);
 
-    stored(M0_, H0_, P0_);
+    scalar M, H;
+    vector P;
+    stored(M, H, P);
+    if (!restoreState())
+    {
+        M0_ = M, H0_ = H, P0_ = P;
+    }
     started_ = true;
     last_ = stepBudget();
-    last_.M = M0_;
-    last_.H = H0_;
-    last_.P = P0_;
+    last_.M = M;
+    last_.H = H;
+    last_.P = P;
     lastIndex_ = time_.timeIndex();
 
     if (log)
@@ -251,13 +258,83 @@ void Foam::functionObjects::meltdemBalance::start()
     }
     os << nl;
 
-    // the start state as first row, flows zero
+    // the start state as first row, flows zero (a resumed run: its errors so far)
     const label nPer = 1 + (energy_ ? 2 : 0) + (momentum_ ? 3 : 0);
+    const scalar massErr = (M - M0_) - massIn_ - exchangeMass_;
+    const scalar HErr = (H - H0_) - enthalpyIn_ - laserE_ + evapE_ - exchangeEnthalpy_;
+    const vector PErr = (P - P0_) - momentumIn_ - gravityImp_ - exchangeMomentum_;
     writeRow
     (
-        0, M0_, H0_, P0_, laserP, evapP, scalarList(nPer*patches_.size(), 0.0),
-        0, 0, 0, 0, 0, Zero, 0
+        0, M, H, P, laserP, evapP, scalarList(nPer*patches_.size(), 0.0),
+        massErr, massErr/max(max(mag(M0_), mag(M)), VSMALL),
+        HErr, HErr/max(mag(H0_), VSMALL), exchangedRel(HErr, max(mag(H - H0_), enthalpyAbs_)),
+        PErr, exchangedRel(mag(PErr), max(mag(P - P0_), momentumAbs_))
     );
+}
+
+
+
+
+void Foam::functionObjects::meltdemBalance::saveState() const
+{
+    IOdictionary state
+    (
+        IOobject
+        (
+            name(), time_.timeName(), "uniform"/word(typeName), time_,
+            IOobject::NO_READ, IOobject::NO_WRITE, false
+        )
+    );
+    const scalar scalars[] =
+    {
+        M0_, H0_, P0_.x(), P0_.y(), P0_.z(), massIn_, enthalpyIn_, laserE_, evapE_,
+        enthalpyAbs_, momentumIn_.x(), momentumIn_.y(), momentumIn_.z(), gravityImp_.x(),
+        gravityImp_.y(), gravityImp_.z(), momentumAbs_, exchangeMass_, exchangeEnthalpy_,
+        exchangeMomentum_.x(), exchangeMomentum_.y(), exchangeMomentum_.z()
+    };
+    List<string> values(label(sizeof scalars/sizeof scalars[0]));
+    forAll(values, i) values[i] = meltdem::exactScalar(scalars[i]);
+    state.add("time", meltdem::exactScalar(time_.value()));
+    state.add("integrals", values);
+    state.regIOobject::writeObject
+    (
+        IOstream::ASCII, IOstream::currentVersion, IOstream::UNCOMPRESSED, true
+    );
+}
+
+
+bool Foam::functionObjects::meltdemBalance::restoreState()
+{
+    IOdictionary state
+    (
+        IOobject
+        (
+            name(), time_.timeName(), "uniform"/word(typeName), time_,
+            IOobject::READ_IF_PRESENT, IOobject::NO_WRITE, false
+        )
+    );
+    if (!state.found("integrals")) return false;
+    const List<string> values(state.get<List<string>>("integrals"));
+    if (values.size() != 22)
+    {
+        FatalIOErrorInFunction(state)
+            << "integrals: 22 values expected, found " << values.size()
+            << exit(FatalIOError);
+    }
+    scalarList v(values.size());
+    forAll(values, i) v[i] = meltdem::readExactScalar(state, values[i], "integrals");
+    M0_ = v[0]; H0_ = v[1]; P0_ = vector(v[2], v[3], v[4]);
+    massIn_ = v[5]; enthalpyIn_ = v[6]; laserE_ = v[7]; evapE_ = v[8];
+    enthalpyAbs_ = v[9]; momentumIn_ = vector(v[10], v[11], v[12]);
+    gravityImp_ = vector(v[13], v[14], v[15]); momentumAbs_ = v[16];
+    exchangeMass_ = v[17]; exchangeEnthalpy_ = v[18];
+    exchangeMomentum_ = vector(v[19], v[20], v[21]);
+    if (log)
+    {
+        Info<< type() << " " << name() << ": continues the balance written at t = "
+            << time_.timeName() << " (" << state.objectPath() << ")" << nl;
+    }
+    return true;
 }
 
 
@@ -650,6 +727,10 @@ bool Foam::functionObjects::meltdemBalance::execute()
         dt, M, H, P, laserP, evapP, patchCols,
         massErr, massRel, HErr, HRel, HRelX, PErr, PRel
     );
+    if (time_.writeTime())
+    {
+        saveState();
+    }
     return true;
 }
 
