@@ -27,6 +27,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <stdexcept>
 #include <limits>
 
 using namespace LAMMPS_NS;
@@ -170,16 +171,26 @@ void FixPowderDt::read_pair_modulus()
     error->all(FLERR, "Fix powder/dt: pair_style {} has no coefficients set", force->pair_style);
 
   estar = 0.0;
+  // E and nu as the pair coefficients give them; out of range is the user's input to name
+  auto modulus = [&](int a, int b, double E1, double nu1, double E2, double nu2) {
+    try {
+      return mc::effective_modulus(E1, nu1, E2, nu2);
+    } catch (const std::invalid_argument &e) {
+      error->all(FLERR, "Fix powder/dt: pair_coeff {} {} of pair_style {}: {} (E {} nu {})", a, b,
+                 force->pair_style, e.what(), a == b ? E1 : E2, a == b ? nu1 : nu2);
+    }
+    return 0.0;
+  };
   for (int i = 1; i <= ntypes; i++)
     for (int j = i; j <= ntypes; j++) {
       double Es;
       int mod;
       if (setflag[i][j]) {
         mod = model[i][j];
-        if (mod == HERTZ_MATERIAL) Es = mc::effective_modulus(E[i][j], nu[i][j], E[i][j], nu[i][j]);
+        if (mod == HERTZ_MATERIAL) Es = modulus(i, j, E[i][j], nu[i][j], E[i][j], nu[i][j]);
       } else if (setflag[i][i] && setflag[j][j]) {
         mod = (model[i][i] == HERTZ_MATERIAL && model[j][j] == HERTZ_MATERIAL) ? HERTZ_MATERIAL : -1;
-        if (mod == HERTZ_MATERIAL) Es = mc::effective_modulus(E[i][i], nu[i][i], E[j][j], nu[j][j]);
+        if (mod == HERTZ_MATERIAL) Es = modulus(i, j, E[i][i], nu[i][i], E[j][j], nu[j][j]);
       } else
         error->all(FLERR, "Fix powder/dt: pair coefficients for types {} {} are not set", i, j);
       if (mod != HERTZ_MATERIAL)

@@ -15,6 +15,7 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <exception>
 #include <string>
 #include <vector>
 #include <mpi.h>
@@ -89,6 +90,12 @@ int main(int argc, char **argv)
     fprintf(stderr, "fmt::format_error: %s\n", fe.what());
     KokkosLMP::finalize();
     Python::finalize();
+    MPI_Abort(MPI_COMM_WORLD, 1);
+    return 1;
+  } catch (std::exception &e) {
+    // what a style did not turn into a LAMMPS error: said as one, not as an abort
+    fprintf(stderr, "ERROR: %s\n", e.what());
+    fflush(stderr);
     MPI_Abort(MPI_COMM_WORLD, 1);
     return 1;
   }

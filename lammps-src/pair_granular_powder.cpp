@@ -40,6 +40,14 @@ void PairGranularPowder::coeff(int narg, char **arg)
       value = utils::numeric(FLERR, arg[i + 2], false, lmp);
       hertz = true;
     }
+    if ((copy[i] == "hertz/material" || copy[i] == "dmt" || copy[i] == "jkr") && i + 3 < narg) {
+      // the material the contact law and fix powder/dt's contact time are computed from
+      const double E = utils::numeric(FLERR, arg[i + 1], false, lmp);
+      const double nu = utils::numeric(FLERR, arg[i + 3], false, lmp);
+      if (!(E > 0.0)) error->all(FLERR, "Illegal pair_coeff command: {} Young's modulus E must be > 0", copy[i]);
+      if (!(nu > -1.0 && nu <= 0.5))
+        error->all(FLERR, "Illegal pair_coeff command: {} Poisson's ratio {} must lie in (-1,0.5]", copy[i], nu);
+    }
     if (copy[i] == "hooke" || copy[i] == "dmt" || copy[i] == "jkr") hertz = false;
     if (copy[i] == "damping" && i + 1 < narg) {
       if (copy[i + 1] == "tsuji") mode = 1;

@@ -8,8 +8,9 @@ namespace meltdem::coupling {
 double effective_modulus(double E1, double nu1, double E2, double nu2)
 {
   if (!(E1 > 0.0) || !(E2 > 0.0)) throw std::invalid_argument("Young's modulus must be > 0");
-  if (nu1 <= -1.0 || nu1 >= 0.5 || nu2 <= -1.0 || nu2 >= 0.5)
-    throw std::invalid_argument("Poisson ratio must lie in (-1, 0.5)");
+  // (-1, 0.5]: 0.5 is the incompressible limit, a valid Hertz contact
+  if (!(nu1 > -1.0 && nu1 <= 0.5) || !(nu2 > -1.0 && nu2 <= 0.5))
+    throw std::invalid_argument("Poisson ratio must lie in (-1, 0.5]");
   return 1.0 / ((1.0 - nu1 * nu1) / E1 + (1.0 - nu2 * nu2) / E2);
 }
 

@@ -114,7 +114,7 @@ def foam_syntax_error(path):
     import shutil
     import subprocess
     exe = shutil.which("foamDictionary")
-    if not exe:
+    if not exe or any(c.isspace() for c in path):   # (a case path with spaces is reported as such)
         return ""
     env = dict(os.environ)
     env.setdefault("WM_PROJECT_DIR", "/usr/share/openfoam")
@@ -142,6 +142,8 @@ def _need(d, keys, rel, rep, prefix="", positive=False):
         v = fd.number(d, k)
         if fd.value(d, k) is None:
             rep.bad(rel, f"{prefix}{k} missing")
+        elif v is None and fd.non_finite({k: fd.value(d, k)}):
+            continue   # reported when the file was read
         elif v is None:
             toks = [t for t in fd.value(d, k) if not isinstance(t, list)]
             rep.bad(rel, f"{prefix}{k} is not a number ({' '.join(map(str, d[k]))})"
@@ -258,9 +260,39 @@ def check_lammps(case, rel, rep, mesh=None, coupled=False, overrides=None, g=Non
                 rep.bad(rel, f"LAMMPS box {_fmt(box)} ({src}) does not contain the mesh box {_fmt(mesh)} in {','.join(out)}")
             else:
                 rep.ok(f"{rel}: LAMMPS box {_fmt(box)} contains the mesh {_fmt(mesh)}")
+    if coupled and mesh is not None:
+        check_insertion_regions(lmp, rel, mesh, rep)
     if lmp.unresolved:
         rep.note(f"{rel}: variables without a value here: {' '.join(sorted(set(lmp.unresolved)))}")
     return lmp
+
+
+def check_insertion_regions(lmp, rel, mesh, rep):
+    """A fix powder/insert region (a block) outside the mesh: its grains would be booked lost the
+    moment they are inserted (the coupling removes particles outside the mesh)."""
+    from .lammps_input import _eval
+    blocks = {w[1]: w[3:9] for _, w in lmp.find("region") if len(w) >= 9 and w[2] == "block"}
+    for n, w in lmp.fixes("powder/insert"):
+        rid = w[w.index("region") + 1] if "region" in w[4:-1] else None
+        if rid not in blocks:
+            continue
+        b = blocks[rid]
+        lo, hi = [], []
+        for k in range(3):
+            a, c = b[2 * k], b[2 * k + 1]
+            lo.append(mesh[0][k] if a in ("INF", "EDGE") else _eval(a))
+            hi.append(mesh[1][k] if c in ("INF", "EDGE") else _eval(c))
+        if None in lo or None in hi:
+            continue
+        inside = [max(lo[k], mesh[0][k]) < min(hi[k], mesh[1][k]) for k in range(3)]
+        if not all(inside):
+            axes = ",".join("xyz"[k] for k in range(3) if not inside[k])
+            rep.bad(rel, f"line {n}: fix {w[1]} powder/insert: region {rid} {_fmt((lo, hi))} lies outside the "
+                         f"mesh {_fmt(mesh)} in {axes}: every grain it inserts would leave the coupled domain at "
+                         f"once and be booked lost")
+        elif any(lo[k] < mesh[0][k] or hi[k] > mesh[1][k] for k in range(3)):
+            rep.note(f"{rel}: line {n}: part of region {rid} lies outside the mesh: grains inserted there are "
+                     f"booked lost at once")
 
 
 def check_laser(d, mesh, rep, rel):
@@ -358,7 +390,7 @@ def check_foam(case, rep):
         for k in CONTROL:
             if fd.value(ctl, k) is None:
                 rep.bad("system/controlDict", f"{k} missing")
-            elif fd.number(ctl, k) is None:
+            elif fd.number(ctl, k) is None and not fd.non_finite({k: fd.value(ctl, k)}):
                 rep.bad("system/controlDict", f"{k} is not a number ({' '.join(map(str, fd.value(ctl, k)))})"
                         + ("; a missing ';' after it?" if len(fd.value(ctl, k)) > 1 else ""))
         e, s = fd.number(ctl, "endTime"), fd.number(ctl, "startTime")

@@ -165,6 +165,18 @@ VARIANTS = {
         lambda c: edit(c, LMP, "thermo 200", 'thermo 200\nvariable bad equal 1/(step-3)\n'
                        'fix pr all print 3 "${bad}"'),
         ["ERROR on proc", "Divide by 0", "Last command: run"]),
+    "alpha_above_one": (
+        "0/alpha.metal internalField 1.5 (ran with rc 0)",
+        lambda c: edit(c, "0/alpha.metal", "internalField uniform 0.0;", "internalField uniform 1.5;"),
+        ["0/alpha.metal", "outside [0, 1]", "metal volume fraction"]),
+    "alpha_negative": (
+        "0/alpha.metal internalField -0.2 (stopped after step 1 blaming the particles' heat exchange)",
+        lambda c: edit(c, "0/alpha.metal", "internalField uniform 0.0;", "internalField uniform -0.2;"),
+        ["0/alpha.metal", "outside [0, 1]"]),
+    "negative_density": (
+        "metal rho -8020 in transportProperties (stopped after step 1 blaming the heat exchange)",
+        lambda c: edit(c, "constant/transportProperties", "rho 8020.0;", "rho -8020.0;"),
+        ["rho -8020", "must be positive", "transportProperties"]),
     "lammps_syntax_error": (
         "an unknown command in the LAMMPS input",
         lambda c: edit(c, LMP, "neighbor 1e-5 bin", "neighbour 1e-5 bin"),
