@@ -129,15 +129,19 @@ class CheckpointedInput {
   long long every_;
   std::unique_ptr<InputReplay> replay_;
   DemState at_;  // the run in progress
-  // the dump and fix commands executed so far: their output files (the variables of later
-  // ones may not exist yet)
-  std::vector<InputCommand> executed_;
+  // the output files of the dump and fix commands executed so far (named between runs:
+  // the variables of later ones may not exist yet), and their sizes before the outputs of
+  // the checkpoint step
+  std::vector<std::string> outputs_;
+  OutputSizes sizes_;
 
   void fail(const std::string &msg) { lmp_->error->all(FLERR, msg); }
 
   void note(const InputCommand &c)
   {
-    if (c.name() == "dump" || c.name() == "fix") executed_.push_back(c);
+    if (c.name() != "dump" && c.name() != "fix") return;
+    for (const std::string &f : output_files(lmp_, {c}))
+      if (std::find(outputs_.begin(), outputs_.end(), f) == outputs_.end()) outputs_.push_back(f);
   }
 
   DemState start_resume(const std::vector<InputCommand> &commands)
@@ -212,7 +216,21 @@ class CheckpointedInput {
     if (lmp_->modify->find_fix(kFixId) >= 0) lmp_->input->one(std::string("unfix ") + kFixId);
     lmp_->input->one(std::string("fix ") + kFixId + " all powder/checkpoint " + std::to_string(every_) + " " + dir_);
     auto *fix = dynamic_cast<FixPowderCheckpoint *>(lmp_->modify->fix[lmp_->modify->find_fix(kFixId)]);
+    fix->before_outputs = [this](bigint) { note_sizes(); };
     fix->written = [this](bigint step, const std::string &folder) { complete(step, folder); };
+  }
+
+  // rank 0, before the outputs of the checkpoint step: the redirected rows so far appended,
+  // then each file's size (a run resumed here writes this step's outputs again)
+  void note_sizes()
+  {
+    if (lmp_->comm->me != 0) return;
+    try {
+      if (replay_) replay_->merge_outputs();
+    } catch (const LammpsSetupError &e) {
+      lmp_->error->one(FLERR, e.what());
+    }
+    sizes_ = output_sizes(outputs_);
   }
 
   // after the restart file of a checkpoint: where the input stands, output sizes, 'complete'
@@ -222,8 +240,7 @@ class CheckpointedInput {
     std::string why;
     if (lmp_->comm->me == 0) {
       try {
-        if (replay_) replay_->merge_outputs();
-        write_output_sizes(ck + "/" + LammpsCouplingHost::kOutputsFile, output_sizes(output_files(lmp_, executed_)));
+        write_output_sizes(ck + "/" + LammpsCouplingHost::kOutputsFile, sizes_);
         const Update *u = lmp_->update;
         char t[64];
         std::snprintf(t, sizeof t, "%a", u->atime + double(u->ntimestep - u->atimestep) * u->dt);

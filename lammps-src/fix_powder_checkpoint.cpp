@@ -1,11 +1,12 @@
 /* ----------------------------------------------------------------------
    MeltDEM: fix powder/checkpoint
 
-   At the end of every N-th step the restart file DIR/<step>/lammps.restart is written
-   during the run, the way LAMMPS's own `restart` output does (the run is not stopped, so
-   the run is the same with or without checkpoints), then the hook `written` completes the
-   checkpoint. Defined last (after the fixes whose output files it records), it sees the
-   rows they wrote at that step.
+   N > 0: at the end of every N-th step the restart file DIR/<step>/lammps.restart is
+   written during the run, the way LAMMPS's own `restart` output does: the run is not
+   stopped, and the neighbour lists are rebuilt on that step (atoms are then inside the
+   box, as a restart file needs them); then the hook `written` completes the checkpoint.
+   Both N > 0 and N = 0 call `before_outputs` in the checkpoint step after the forces,
+   before any fix or dump writes that step's output.
 ------------------------------------------------------------------------- */
 
 #include "fix_powder_checkpoint.h"
@@ -25,14 +26,32 @@ using namespace FixConst;
 FixPowderCheckpoint::FixPowderCheckpoint(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, narg, arg)
 {
   if (narg != 5) error->all(FLERR, "Illegal fix powder/checkpoint command: expected N DIR");
-  nevery = utils::inumeric(FLERR, arg[3], false, lmp);
-  if (nevery <= 0) error->all(FLERR, "Illegal fix powder/checkpoint command: N must be > 0");
+  every = utils::inumeric(FLERR, arg[3], false, lmp);
+  if (every < 0) error->all(FLERR, "Illegal fix powder/checkpoint command: N must be >= 0");
   dir = arg[4];
+  nevery = every > 0 ? every : 1;
+  force_reneighbor = every > 0 ? 1 : 0;
+  next_reneighbor = -1;
 }
 
 int FixPowderCheckpoint::setmask()
 {
-  return END_OF_STEP;
+  return POST_FORCE | (every > 0 ? END_OF_STEP : 0);
+}
+
+void FixPowderCheckpoint::init()
+{
+  if (every > 0) next_reneighbor = (update->ntimestep / every + 1) * every;
+}
+
+bool FixPowderCheckpoint::due(bigint step) const
+{
+  return every > 0 ? step % every == 0 : step == checkpoint_step;
+}
+
+void FixPowderCheckpoint::post_force(int)
+{
+  if (before_outputs && due(update->ntimestep)) before_outputs(update->ntimestep);
 }
 
 void FixPowderCheckpoint::end_of_step()
@@ -51,4 +70,5 @@ void FixPowderCheckpoint::end_of_step()
   restart.multiproc_options(0, 0, 0, nullptr);
   restart.write(folder + "/" + kRestartFile);
   if (written) written(step, folder);
+  next_reneighbor = step + every;
 }

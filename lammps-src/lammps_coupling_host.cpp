@@ -2,6 +2,7 @@
 #include "lammps_coupling_host.h"
 
 #include "fix_powder_insert.h"
+#include "fix_powder_checkpoint.h"
 #include "input_replay.h"
 #include "fix_powder_melt.h"
 #include "lammps_version_guard.h"
@@ -100,6 +101,11 @@ struct LammpsCouplingHost::Impl {
   std::vector<InputCommand> commands;
   std::string not_replayable;
   std::unique_ptr<InputReplay> replay;
+  // the input's output files, and their sizes before the outputs of the last step of the
+  // last interval (a checkpoint's step; a run resumed there writes its outputs again)
+  FixPowderCheckpoint *outputs_fix = nullptr;
+  std::vector<std::string> outputs;
+  OutputSizes sizes;
 };
 
 LammpsCouplingHost::LammpsCouplingHost(MPI_Comm comm, const std::string &input_file, const std::string &log_file,
@@ -167,6 +173,17 @@ LammpsCouplingHost::LammpsCouplingHost(MPI_Comm comm, const std::string &input_f
                            "the particles' material)");
   impl_->provider = std::make_unique<TagFluidProvider>(lmp);
   impl_->melt->set_fluid_provider(impl_->provider.get());
+  if (impl_->not_replayable.empty()) {
+    impl_->outputs = output_files(lmp, impl_->commands);
+    lmp->input->one("fix meltdem_outputs all powder/checkpoint 0 NULL");
+    impl_->outputs_fix = dynamic_cast<FixPowderCheckpoint *>(lmp->modify->fix[lmp->modify->find_fix("meltdem_outputs")]);
+    Impl *impl = impl_.get();
+    impl_->outputs_fix->before_outputs = [impl](bigint) {
+      if (impl->me != 0) return;
+      if (impl->replay) impl->replay->merge_outputs();
+      impl->sizes = output_sizes(impl->outputs);
+    };
+  }
   // initialise every style once (fix gravity sets its vector only in init)
   if (impl_->me == 0 && lmp->screen) fflush(lmp->screen);
   lmp->screen = errors_only_screen();
@@ -256,6 +273,7 @@ void LammpsCouplingHost::advance(int n, std::vector<mc::ExchangeRecord> &records
 {
   if (n < 1) throw std::invalid_argument("LammpsCouplingHost::advance: n must be >= 1");
   impl_->melt->reset_interval();
+  if (impl_->outputs_fix) impl_->outputs_fix->checkpoint_step = impl_->lmp->update->ntimestep + n;
   const std::string cmd = "run " + std::to_string(n) + (impl_->needs_setup ? " post no" : " pre no post no");
   impl_->lmp->input->one(cmd.c_str());
   impl_->needs_setup = false;
@@ -284,8 +302,7 @@ void LammpsCouplingHost::write_checkpoint(const std::string &dir)
 {
   command("write_restart " + dir + "/" + kRestartFile);
   if (impl_->me != 0 || !impl_->not_replayable.empty()) return;
-  if (impl_->replay) impl_->replay->merge_outputs();
-  write_output_sizes(dir + "/" + kOutputsFile, output_sizes(output_files(impl_->lmp, impl_->commands)));
+  write_output_sizes(dir + "/" + kOutputsFile, impl_->sizes);
 }
 
 void LammpsCouplingHost::write_particles(const std::string &file)

@@ -7,7 +7,7 @@ import sys
 SRC = os.environ.get("MELTDEM_SOURCE_DIR") or os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
 sys.path.insert(0, os.path.join(SRC, "tests", "support"))
 sys.path.insert(0, os.path.join(SRC, "tools"))
-from meltdem_report import check_absolute, check_at_least, report  # noqa: E402,F401
+from meltdem_report import check_absolute, check_at_least, check_at_most, report  # noqa: E402,F401
 
 
 def meltdem_command():

@@ -36,7 +36,7 @@ def cmd_check(a):
 def cmd_run(a):
     from . import run
     return run.run(a.target, case=a.case, np_=a.np, resume=a.resume, size="full" if a.full else "ci",
-                   check_first=not a.no_check, analyse=not a.no_analyse)
+                   check_first=not a.no_check, analyse=not a.no_analyse, checkpoint_every=a.checkpoint_every)
 
 
 def cmd_post(a):
@@ -77,6 +77,8 @@ def parser():
     size.add_argument("--full", action="store_true", help="the example's full (paper/thesis) size; see its README for the time")
     p.add_argument("--no-check", action="store_true", help="skip meltdem check before the launch")
     p.add_argument("--no-analyse", action="store_true", help="skip the example's scene.py analyse")
+    p.add_argument("--checkpoint-every", type=int, default=None, metavar="N",
+                   help="DEM-only cases: a checkpoint every N steps (default 10000)")
     p.set_defaults(func=cmd_run)
     p = sub.add_parser("post", help="post-process a case: VTK (.pvd) series, plots, summary")
     p.add_argument("case")

@@ -422,14 +422,10 @@ def dem_checkpoints(case):
     return sorted(out)
 
 
-def checkpoint_every(runs):
-    """DEM steps between checkpoints: a tenth of the input's runs, at least 1000 steps (10000 when
-    the run lengths are not known before the run)."""
-    total = sum(abs(r) for r in runs) if runs else 0
-    return max(1000, total // 10) if total else 10000
+CHECKPOINT_EVERY = 10000   # DEM steps between the checkpoints of a DEM-only run (default)
 
 
-def run_dem(case, np_, resume):
+def run_dem(case, np_, resume, checkpoint_every=None):
     inp = chk.dem_input(case)
     if resume:
         steps = dem_checkpoints(case)
@@ -458,7 +454,7 @@ def run_dem(case, np_, resume):
     runs = lmp_in.runs()
     # checkpoints the run resumes from (`meltdem run CASE --resume`); a resumed run keeps the
     # interval it was started with (it is in the checkpoint)
-    cmd += ["-checkpoint", RESTART_DIR, str(checkpoint_every(runs))] + (["-resume"] if resume else [])
+    cmd += ["-checkpoint", RESTART_DIR, str(checkpoint_every or CHECKPOINT_EVERY)] + (["-resume"] if resume else [])
     if np_ > 1:
         cmd = mpirun(np_) + cmd
     halt = lmp_in.fixes("halt")
@@ -528,7 +524,7 @@ def postprocess(case, example=None):
 
 
 # ------------------------------------------------------------------------------------- main
-def run(target, case=None, np_=1, resume=False, size="ci", check_first=True, analyse=True):
+def run(target, case=None, np_=1, resume=False, size="ci", check_first=True, analyse=True, checkpoint_every=None):
     """Returns 0; raises StepError with the one-line reason. The case is locked for the whole run
     (caselock.py): a second run of the same case stops before it touches anything."""
     name = target if target in ex.names() and not (os.sep in target or target.startswith(".")) else None
@@ -552,12 +548,12 @@ def run(target, case=None, np_=1, resume=False, size="ci", check_first=True, ana
     try:
         if lock.stale:
             say(f"took over the case lock of a run that ended without releasing it ({lock.stale})")
-        return _run(name, target, case, lock, np_, resume, size, check_first, analyse)
+        return _run(name, target, case, lock, np_, resume, size, check_first, analyse, checkpoint_every)
     finally:
         lock.release()
 
 
-def _run(name, target, case, lock, np_, resume, size, check_first, analyse):
+def _run(name, target, case, lock, np_, resume, size, check_first, analyse, checkpoint_every=None):
     if name:
         if resume:
             say(f"resuming {name} in {case} (not rebuilt)")
@@ -589,7 +585,7 @@ def _run(name, target, case, lock, np_, resume, size, check_first, analyse):
         if kind == "foam":
             run_foam(case, np_, resume, rebuilt=bool(name) and not resume)
         else:
-            run_dem(case, np_, resume)
+            run_dem(case, np_, resume, checkpoint_every)
         # the scene's analysis first: post-processing then takes its numbers (bead, efficiency,
         # packing) from the summary.json it wrote instead of running the analysis a second time
         if name and analyse and os.path.isfile(os.path.join(ex.examples_dir(), name, "scene.py")):
