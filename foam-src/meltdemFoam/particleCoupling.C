@@ -462,7 +462,9 @@ void Foam::meltdem::particleCoupling::advance(Time& runTime, const fluidFields& 
         const scalar reach = vmax*runTime.deltaTValue() + largestCell_;
         exchange_->nearest_solid(solidFraction.cdata(), reach, solid);
     }
-    // 2. whole DEM steps up to the fluid step
+    // 2. whole DEM steps up to the fluid step (a sub-cycle longer than maxSubSteps is an
+    // input mistake: a DEM step of the wrong unit or order of magnitude)
+    const scalar maxSubSteps = 1e8;
     const scalar dtDem = lammps_->timestep();
     const scalar remaining = runTime.endTime().value() - runTime.value();
     const scalar dtFluid =
@@ -475,7 +477,16 @@ void Foam::meltdem::particleCoupling::advance(Time& runTime, const fluidFields& 
         // (never longer than the DEM's own step): the fluid step is what its Courant
         // limit allows, not rounded down to whole DEM steps (which, below 5 DEM steps,
         // could never grow by the solver's factor 1.2)
-        n = max(label(1), label(std::ceil(dtFluid/dtDem*(1 - 1e-12))));
+        const scalar steps = std::ceil(dtFluid/dtDem*(1 - 1e-12));
+        if (!(steps <= maxSubSteps))
+        {
+            FatalErrorInFunction
+                << "one fluid step of " << dtFluid << " s would take " << steps << " DEM steps of "
+                << dtDem << " s (more than " << maxSubSteps << "): check the LAMMPS input's "
+                << "timestep (or fix powder/dt) against maxDeltaT in system/controlDict"
+                << exit(FatalError);
+        }
+        n = max(label(1), label(steps));
         dtSub = dtFluid/n;
     }
     else

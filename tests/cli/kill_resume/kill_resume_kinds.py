@@ -221,8 +221,7 @@ for name, kills in SCENARIOS.items():
         ok &= check_at_most(T, f"{name}: mean grain height at the end, |resumed - uninterrupted| / bed height",
                             abs(float(np.mean(zb)) - float(np.mean(za))) / top, 0.01)
 
-if ok:
-    shutil.rmtree(work, ignore_errors=True)
-else:
-    print(f"kept {work}")
-sys.exit(0 if ok else 1)
+sys.path.insert(0, os.path.join(SRC, "tests", "support"))
+import foamcase as fc  # noqa: E402
+
+sys.exit(fc.finish(ok, work))

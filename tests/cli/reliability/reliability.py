@@ -219,8 +219,7 @@ ok &= check_absolute(T, "gravity on the grains: momentum balance not shown",
 ok &= check_absolute(T, "gravity on the grains: the summary says why",
                      int("momentum balance not shown" in md and "gravity on the particles" in md), 1, 0)
 
-if ok:
-    shutil.rmtree(work, ignore_errors=True)
-else:
-    print(f"kept {work}")
-sys.exit(1 if not ok else 77 if skipped else 0)
+import foamcase as fc  # noqa: E402
+
+rc = fc.finish(ok, work)
+sys.exit(77 if rc == 0 and skipped else rc)

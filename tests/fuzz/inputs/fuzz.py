@@ -17,7 +17,8 @@ run by `meltdem run CASE --no-analyse`: check, solver, post-processing). Mutatio
 made out of range (0, negative, 1e300, 1e-300), nan or inf, a number replaced by a word, a token
 deleted, a keyword misspelt, a line deleted or duplicated, a file truncated.
 
-usage: fuzz.py N_DEM N_COUPLED SEED   (CI: 40 25 17; the long variant: label long)
+usage: fuzz.py N_DEM N_COUPLED SEED [--show]   (CI: 40 24 17; the long variant: label long)
+--show prints every mutation with the line it ended with.
 Counts of mutations tried and of each outcome are reported as validation rows; every failing
 mutation is printed with its seed, file and edit, so that it can be replayed."""
 import glob
@@ -41,6 +42,7 @@ from clitest import meltdem_command  # noqa: E402
 
 N_DEM, N_COUPLED, SEED = (int(x) for x in sys.argv[1:4])
 LONG = "--long" in sys.argv
+SHOW = "--show" in sys.argv   # print each mutation with the message it ended with
 TEST = "fuzz.long" if LONG else "fuzz"
 TIMEOUT = {"dem": 60, "coupled": 240}
 CRASH = ("Traceback (most recent call last)", "terminate called", "Signal: Segmentation", "Signal: Aborted",
@@ -103,6 +105,17 @@ def outcome(rc, out, closed=True):
         return "ran" if closed else "unclosed"
     named = re.search(r"^(ERROR|meltdem: ERROR:|  ERROR )\S*.*\S", out, re.M) is not None
     return "named" if named else "unnamed"
+
+
+def message(out):
+    """the line that names the problem (LAMMPS ERROR, meltdem ERROR), '' if none"""
+    m = re.findall(r"^(?:ERROR.*|meltdem: ERROR:.*|  ERROR .*)$", out, re.M)
+    return m[0][:220] if m else ""
+
+
+def show(label, what, o, out):
+    if SHOW:
+        print(f"{label}: {what}\n    -> {o}: {message(out) if o != 'ran' else 'exit 0'}")
 
 
 def run(cmd, cwd, limit):
@@ -178,6 +191,7 @@ def main():
         open(p, "w").write(text)
         rc, out = run([os.path.join(BIN, "meltdem-lmp"), "-in", "in.bed", "-log", "none"], case, TIMEOUT["dem"])
         o = outcome(rc, out)
+        show(f"dem_{n}", what, o, out)
         counts["dem"][o] = counts["dem"].get(o, 0) + 1
         if o in ("ran", "named"):
             shutil.rmtree(case, ignore_errors=True)
@@ -203,6 +217,7 @@ def main():
         rel = os.path.relpath(f, case)
         rc, out = run(meltdem_command() + ["run", case, "--no-analyse"], work, TIMEOUT["coupled"])
         o = outcome(rc, out, closed_balances(case))
+        show(f"coupled_{n} {os.path.basename(seed)} {rel}", what, o, out)
         counts["coupled"][o] = counts["coupled"].get(o, 0) + 1
         if o in ("ran", "named"):
             shutil.rmtree(case, ignore_errors=True)
@@ -221,11 +236,8 @@ def main():
                            c.get(good, 0), c.get(good, 0), 0)
         for bad in ("crash", "hang", "unclosed", "unnamed"):
             ok &= check_absolute(TEST, f"{kind} mutations ending in a {bad}", c.get(bad, 0), 0, 0)
-    if ok:
-        shutil.rmtree(work, ignore_errors=True)
-    else:
-        print(f"kept {work}")
-    return 0 if ok else 1
+    import foamcase as fc
+    return fc.finish(ok, work)
 
 
 if __name__ == "__main__":
