@@ -9,7 +9,7 @@ three copies are killed with SIGKILL to their process group, as a batch system w
 
 and resumed until they end. Kinds (usage: kill_resume_kinds.py coupled|continuum|dem):
 
-  coupled    lmd-track's CI case cut to 0.12 s (powder inserted during the run, melting,
+  coupled    lmd-track's CI case cut to 0.09 s (powder inserted during the run, melting,
              solid-metal contact, the laser), write times 0.03 s apart, binary fields: the
              ledger and particles.csv identical row for row (bit for bit), the LAMMPS outputs
              (feed.dat of fix ave/time, dump.grains) and the particles at the end identical,
@@ -51,7 +51,7 @@ KIND = sys.argv[1]
 T = f"cli.kill_resume.{KIND}"
 ok = True
 work = tempfile.mkdtemp(prefix=f"meltdem-kill-{KIND}-")
-END, WRITE = 0.12, 0.03
+END, WRITE = 0.09, 0.03
 
 
 def control(case, **entries):
@@ -128,7 +128,7 @@ if KIND == "dem":
     B1, B2, W = 60000, 100000, 120000
     between = lambda c: progress(c) >= B1 and os.path.isfile(os.path.join(c, "meltdemRestart", str(B1), "complete"))  # noqa: E731
 else:
-    B1, B2, W = 2 * WRITE, 3.5 * WRITE, 3 * WRITE
+    B1, B2, W = 2 * WRITE, 2.5 * WRITE, 2 * WRITE
     between = lambda c: progress(c) >= 2.5 * WRITE  # noqa: E731
 SCENARIOS = {
     "between": [between],
