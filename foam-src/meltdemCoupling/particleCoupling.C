@@ -1,0 +1,333 @@
+#include "particleCoupling.H"
+
+#include "Time.H"
+
+#include <chrono>
+#include <cmath>
+#include <string>
+#include <unordered_map>
+
+namespace mc = ::meltdem::coupling;
+
+namespace
+{
+
+double seconds()
+{
+    using clock = std::chrono::steady_clock;
+    return std::chrono::duration<double>(clock::now().time_since_epoch()).count();
+}
+
+Foam::word requiredWord(const Foam::dictionary& d, const Foam::word& key)
+{
+    if (!d.found(key))
+    {
+        FatalIOErrorInFunction(d)
+            << "missing entry '" << key << "' in " << d.name() << Foam::exit(Foam::FatalIOError);
+    }
+    return d.get<Foam::word>(key);
+}
+
+//- Where the particles of the records are, for the exchange
+std::vector<::meltdem::coupling::ParticleShape> shapesOf
+(
+    const std::vector<::meltdem::coupling::ExchangeRecord>& records
+)
+{
+    std::vector<::meltdem::coupling::ParticleShape> shapes;
+    shapes.reserve(records.size());
+    for (const auto& r : records) shapes.push_back({r.x, r.radius, r.id});
+    return shapes;
+}
+
+} // End anonymous namespace
+
+
+Foam::meltdem::particleCoupling::particleCoupling
+(
+    const fvMesh& mesh,
+    const dictionary& meltdemDict,
+    const scalar rhoMetal
+)
+:
+    mesh_(mesh),
+    dict_(meltdemDict.optionalSubDict("particles")),
+    model_(mc::DistributionModel::Neighbours),
+    fixedSubSteps_(0),
+    thermal_(meltdemDict.subDict("physics").getOrDefault<bool>("energy", false)),
+    distMesh_(mesh),
+    haveLocated_(false),
+    startHaveLocated_(false),
+    subSteps_(0),
+    exchangeSeconds_(0),
+    lammpsSeconds_(0)
+{
+    if (!meltdemDict.found("particles") || !meltdemDict.isDict("particles"))
+    {
+        FatalIOErrorInFunction(meltdemDict)
+            << "physics { particles on; } needs the sub-dictionary 'particles'"
+            << " (lammpsInput, distribution)" << exit(FatalIOError);
+    }
+    try
+    {
+        model_ = mc::parse_distribution_model(requiredWord(dict_, "distribution"));
+    }
+    catch (const std::invalid_argument& e)
+    {
+        FatalIOErrorInFunction(dict_)
+            << "distribution: " << e.what() << exit(FatalIOError);
+    }
+    if (dict_.found("demStepsPerFluidStep"))
+    {
+        const ITstream& is = dict_.lookup("demStepsPerFluidStep");
+        if (!(is[0].isWord() && is[0].wordToken() == "auto"))
+        {
+            fixedSubSteps_ = dict_.get<label>("demStepsPerFluidStep");
+            if (fixedSubSteps_ < 1)
+            {
+                FatalIOErrorInFunction(dict_)
+                    << "demStepsPerFluidStep must be auto or >= 1, not "
+                    << fixedSubSteps_ << exit(FatalIOError);
+            }
+        }
+    }
+    // off: the beam passes the particles (LMD, Codina2019 4.1: the powder's own absorption
+    // is negligible beside the pool's, and the ray grid is costly over a wide beam)
+    const bool laserShadow = dict_.getOrDefault<bool>("laserShadow", true);
+    Info<< "Particles: distribution " << mc::to_string(model_) << endl;
+
+    comm_.reset(new particleCommunicator);
+    const MPI_Comm comm = comm_->comm();
+    checkpoint_.reset(new particleCheckpoint(mesh.time(), comm));
+
+    // a run started at a write time with a complete checkpoint resumes from it
+    double lammpsTime = 0;
+    std::string ledgerState;
+    const bool resumed = checkpoint_->read(lammpsTime, ledgerState);
+    const fileName restartFile
+    (
+        resumed
+      ? checkpoint_->dir(mesh.time().timeName())/::meltdem::LammpsCouplingHost::kRestartFile
+      : fileName()
+    );
+    if (resumed)
+    {
+        Info<< "Particles: resuming from the checkpoint " << restartFile
+            << " (LAMMPS time " << lammpsTime << " s)" << endl;
+    }
+    host_.reset
+    (
+        new particleHost(mesh, meltdemDict, dict_, comm, distMesh_, thermal_, restartFile, lammpsTime)
+    );
+    ::meltdem::LammpsCouplingHost& lammps = (*host_)();
+    lossWatch_.reset(new insertionLossWatch(lammps, comm));
+
+    exchange_.reset(new mc::ParallelExchange(distMesh_, model_, comm));
+    startExchange_.reset(new mc::ParallelExchange(distMesh_, model_, comm));
+    sampling_.reset(new particleSampling(mesh, comm, thermal_, laserShadow));
+    bounds_.reset(new temperatureBounds(mesh, comm));
+    deposition_.reset(new particleDeposition(mesh, rhoMetal, model_));
+    ledger_.reset
+    (
+        new particleLedgerOutput
+        (
+            mesh, comm, lammps, resumed ? &ledgerState : nullptr,
+            checkpoint_->dir(mesh.time().timeName())
+        )
+    );
+
+    Info<< "Particles: " << lammps.particles() << " particles, DEM step "
+        << lammps.timestep() << " s, coupling interval "
+        << (fixedSubSteps_ ? name(fixedSubSteps_) + " DEM steps" : word("auto"))
+        << nl << endl;
+}
+
+
+Foam::meltdem::particleCoupling::~particleCoupling()
+{
+    // LAMMPS and the exchanges before the communicator they use
+    ledger_.reset();
+    host_.reset();
+    exchange_.reset();
+    startExchange_.reset();
+    comm_.reset();
+}
+
+
+void Foam::meltdem::particleCoupling::subCycles
+(
+    const Time& runTime,
+    label& n,
+    scalar& dtSub
+) const
+{
+    // a sub-cycle longer than maxSubSteps is an input mistake: a DEM step of the wrong
+    // unit or order of magnitude
+    const scalar maxSubSteps = 1e8;
+    const scalar dtDem = (*host_)().timestep();
+    const scalar remaining = runTime.endTime().value() - runTime.value();
+    const scalar dtFluid =
+        remaining > 0 ? min(runTime.deltaTValue(), remaining) : runTime.deltaTValue();
+    n = fixedSubSteps_;
+    dtSub = dtDem;
+    if (!n)
+    {
+        // as many DEM steps as the fluid step needs, each shortened to fill it exactly
+        // (never longer than the DEM's own step): the fluid step is what its Courant
+        // limit allows, not rounded down to whole DEM steps (which, below 5 DEM steps,
+        // could never grow by the solver's factor 1.2)
+        const scalar steps = std::ceil(dtFluid/dtDem*(1 - 1e-12));
+        if (!(steps <= maxSubSteps))
+        {
+            FatalErrorInFunction
+                << "one fluid step of " << dtFluid << " s would take " << steps << " DEM steps of "
+                << dtDem << " s (more than " << maxSubSteps << "): check the LAMMPS input's "
+                << "timestep (or fix powder/dt) against maxDeltaT in system/controlDict"
+                << exit(FatalError);
+        }
+        n = max(label(1), label(steps));
+        dtSub = dtFluid/n;
+    }
+    else
+    {
+        n = min(n, max(label(1), label(std::ceil(remaining/dtDem - 1e-9))));
+    }
+}
+
+
+void Foam::meltdem::particleCoupling::advance(Time& runTime, const fluidFields& f)
+{
+    double t0 = seconds();
+    ::meltdem::LammpsCouplingHost& lammps = (*host_)();
+    const MPI_Comm comm = comm_->comm();
+
+    // 1. the fluid each particle sees, fixed over the step
+    std::vector<mc::ExchangeRecord> start;
+    lammps.local_particles(start);
+    relocate(shapesOf(start));
+    const scalarField cp(f.rhoCp.primitiveField()/f.rho.primitiveField());
+    const mc::CellFluidFields cells(particleSampling::cellFields(f, cp));
+    std::vector<mc::SampledFluid> sampled;
+    sampling_->sample(*exchange_, cells, f, start, *bounds_, sampled);
+    std::vector<mc::SolidSurface> solid;
+    if (lammps.solid_metal_wall())
+    {
+        sampling_->solidSurfaces(*exchange_, f, start, runTime.deltaTValue(), solid);
+    }
+
+    // 2. whole DEM steps up to the fluid step, the light fixed at mid-step
+    const scalar dtDem = lammps.timestep();
+    label n;
+    scalar dtSub;
+    subCycles(runTime, n, dtSub);
+    std::vector<double> light;
+    sampling_->shade(runTime, start, n*dtSub, *exchange_, light);
+    bounds_->setHeated(sampling_->heated());
+    lammps.set_fluid(sampling_->fluidStates(*exchange_, sampled, solid, light));
+    std::unordered_map<std::int64_t, double> lightOf;
+    for (std::size_t g = 0; g < light.size(); ++g)
+    {
+        if (light[g] > 0) lightOf[exchange_->global_id(std::int64_t(g))] = light[g];
+    }
+
+    const std::int64_t before = lammps.particles();
+    const double tLmp0 = lammps.time();
+    exchangeSeconds_ += seconds() - t0;
+    const double w0 = seconds();
+    std::vector<mc::ExchangeRecord> records;
+    const bool shortened = dtSub < dtDem*(1 - 1e-12);
+    if (shortened) lammps.set_timestep(dtSub);
+    lammps.advance(int(n), records);
+    bounds_->widen(records);
+    // back to the DEM's own step unless the input changed it meanwhile (fix powder/dt)
+    if (shortened && lammps.timestep() == dtSub) lammps.set_timestep(dtDem);
+    lammpsSeconds_ += seconds() - w0;
+    t0 = seconds();
+    subSteps_ = n;
+    const scalar elapsed = lammps.time() - tLmp0;
+    runTime.setDeltaT(elapsed, false);
+
+    // particles lost by LAMMPS itself cannot be booked: refuse to go on
+    std::int64_t nRecords = std::int64_t(records.size());
+    MPI_Allreduce(MPI_IN_PLACE, &nRecords, 1, MPI_INT64_T, MPI_SUM, comm);
+    if (nRecords < before)
+    {
+        FatalErrorInFunction
+            << "LAMMPS lost " << before - nRecords << " particle(s) during the step "
+            << "(they left its box); make the LAMMPS box larger than the mesh so that "
+            << "particles leave the mesh first and are booked as outflow"
+            << exit(FatalError);
+    }
+
+    // a particle that melted away within the step (mass 0): its melt is spread with the
+    // size it had at the start of the step, not its last solid size (one cell in fine
+    // meshes); and it stopped absorbing its light: the beam the shadow held back for the
+    // rest of the step heats its melt (the continuum gets it with the melt's enthalpy), so
+    // continuum + particles still absorb eta P
+    std::unordered_map<std::int64_t, double> startRadius;
+    for (const auto& r : start) startRadius[r.id] = r.radius;
+    for (auto& r : records)
+    {
+        if (r.mass > 0) continue;
+        const auto radius = startRadius.find(r.id);
+        if (radius != startRadius.end()) r.radius = max(r.radius, radius->second);
+        const auto lit = lightOf.find(r.id);
+        if (lit == lightOf.end()) continue;
+        const double rest = lit->second*elapsed - r.external_heat;
+        if (rest > 0)
+        {
+            r.external_heat += rest;
+            r.enthalpy_out += rest;
+        }
+    }
+
+    // 3./4. where each particle is now: inside -> deposit, outside -> outflow;
+    // the start-of-step location kept for what the particles took
+    std::swap(exchange_, startExchange_);
+    std::swap(located_, startLocated_);
+    std::swap(haveLocated_, startHaveLocated_);
+    relocate(shapesOf(records));
+    std::vector<std::int64_t> leaving;
+    deposition_->deposit(records, *exchange_, *startExchange_, cells, elapsed, inside_, lost_, leaving);
+
+    std::int64_t nLeaving = std::int64_t(leaving.size());
+    MPI_Allreduce(MPI_IN_PLACE, &nLeaving, 1, MPI_INT64_T, MPI_SUM, comm);
+    if (nLeaving)
+    {
+        lammps.remove(leaving);
+        Info<< "Particles: " << nLeaving << " left the mesh (booked as outflow)" << endl;
+    }
+    exchangeSeconds_ += seconds() - t0;
+
+    Info<< "Particles: " << lammps.particles() << " in " << n << " DEM steps of "
+        << dtSub << " s; handed over "
+        << gSum(deposition_->massSource().field()*mesh_.V())*elapsed << " kg of metal" << endl;
+}
+
+
+void Foam::meltdem::particleCoupling::book(const functionObjects::meltdemBalance& balance)
+{
+    const ::meltdem::LammpsCouplingHost& lammps = (*host_)();
+    ledger_->book(balance.lastStep(), inside_, lost_, lammps, subSteps_, exchangeSeconds_, lammpsSeconds_);
+    lossWatch_->check(lost_, lammps, distMesh_.globalBounds());
+    bounds_->check(deposition_->enthalpySource());
+}
+
+
+void Foam::meltdem::particleCoupling::relocate(const std::vector<mc::ParticleShape>& shapes)
+{
+    // the particles at the start of a step are those at the end of the last one unless
+    // some left, melted away or came: then the weights are still valid
+    // (a collective decision: every rank locates, or none)
+    int same = haveLocated_ && shapes.size() == located_.size() ? 1 : 0;
+    for (std::size_t i = 0; same && i < shapes.size(); ++i)
+    {
+        same = shapes[i].id == located_[i].id && shapes[i].radius == located_[i].radius
+            && shapes[i].x == located_[i].x;
+    }
+    MPI_Allreduce(MPI_IN_PLACE, &same, 1, MPI_INT, MPI_MIN, comm_->comm());
+    if (same) return;
+    exchange_->locate(shapes);
+    located_ = shapes;
+    haveLocated_ = true;
+}

@@ -1,0 +1,194 @@
+#include "particleSampling.H"
+
+#include "meltdem/coupling/particle_melting.h"
+
+namespace mc = ::meltdem::coupling;
+
+Foam::meltdem::particleSampling::particleSampling
+(
+    const fvMesh& mesh,
+    MPI_Comm comm,
+    const bool thermal,
+    const bool laserShadow
+)
+:
+    mesh_(mesh),
+    comm_(comm),
+    thermal_(thermal),
+    laserShadow_(laserShadow),
+    largestCell_(Foam::cbrt(gMax(mesh.V().field()))),
+    laser_(nullptr)
+{}
+
+
+::meltdem::coupling::CellFluidFields Foam::meltdem::particleSampling::cellFields
+(
+    const fluidFields& f,
+    const scalarField& cp
+)
+{
+    return mc::CellFluidFields
+    {
+        f.T.primitiveField().cdata(),
+        f.kappa.primitiveField().cdata(),
+        f.rho.primitiveField().cdata(),
+        f.mu.primitiveField().cdata(),
+        cp.cdata(),
+        reinterpret_cast<const double*>(f.U.primitiveField().cdata()),
+        f.alphaMetal.primitiveField().cdata(),
+        f.liquidFraction.primitiveField().cdata(),
+        f.T.mesh().V().cdata()
+    };
+}
+
+
+void Foam::meltdem::particleSampling::sample
+(
+    mc::ParallelExchange& exchange,
+    const mc::CellFluidFields& cells,
+    const fluidFields& f,
+    const std::vector<mc::ExchangeRecord>& start,
+    temperatureBounds& bounds,
+    std::vector<mc::SampledFluid>& sampled
+) const
+{
+    exchange.sample_global(cells, sampled);
+    if (!thermal_) return;
+    // the range no exchange may leave, and the worst cell's C/G for the message
+    const std::size_t offset = exchange.local_offset();
+    std::vector<mc::Amounts> g(start.size(), mc::Amounts{});
+    scalar Tplo = GREAT, Tphi = -GREAT;
+    for (std::size_t i = 0; i < start.size(); ++i)
+    {
+        if (!exchange.inside(i)) continue;
+        g[i][0] = mc::particle_conductance
+        (
+            sampled[offset + i].fluid, 2*start[i].radius, start[i].v.data()
+        );
+        Tplo = min(Tplo, start[i].T);
+        Tphi = max(Tphi, start[i].T);
+    }
+    const scalarField& V = mesh_.V();
+    std::vector<mc::Amounts> gCells(std::size_t(V.size()), mc::Amounts{});
+    exchange.deposit(g, gCells);
+    std::vector<double> heatCapacity(V.size()), conductance(V.size());
+    forAll(V, celli)
+    {
+        heatCapacity[celli] = f.rhoCp[celli]*V[celli];
+        conductance[celli] = gCells[celli][0];
+    }
+    const scalar exchangeTime = returnReduce
+    (
+        mc::heat_exchange_time(heatCapacity.data(), conductance.data(), V.size()),
+        minOp<scalar>()
+    );
+    bounds.start(f.T, Tplo, Tphi, exchangeTime);
+}
+
+
+void Foam::meltdem::particleSampling::solidSurfaces
+(
+    mc::ParallelExchange& exchange,
+    const fluidFields& f,
+    const std::vector<mc::ExchangeRecord>& start,
+    const scalar dt,
+    std::vector<mc::SolidSurface>& solid
+) const
+{
+    const scalarField solidFraction
+    (
+        f.alphaMetal.primitiveField()*(1 - f.liquidFraction.primitiveField())
+    );
+    // reach: what a particle can travel in this step plus a cell
+    double vmax = 0;
+    for (const auto& r : start) vmax = std::max(vmax, r.v.norm());
+    MPI_Allreduce(MPI_IN_PLACE, &vmax, 1, MPI_DOUBLE, MPI_MAX, comm_);
+    const scalar reach = vmax*dt + largestCell_;
+    exchange.nearest_solid(solidFraction.cdata(), reach, solid);
+}
+
+
+void Foam::meltdem::particleSampling::shade
+(
+    const Time& runTime,
+    const std::vector<mc::ExchangeRecord>& start,
+    const scalar dtPlanned,
+    const mc::ParallelExchange& exchange,
+    std::vector<double>& absorbed
+)
+{
+    absorbed.clear();
+    if (!laser_) return;
+    const scalar tMid = runTime.value() + 0.5*dtPlanned;
+    if (!laserShadow_ || !laser_->on(tMid) || laser_->power() <= 0)
+    {
+        laser_->setShadow({}, 1);
+        return;
+    }
+    mc::GaussianBeam beam;
+    beam.power = laser_->power();
+    beam.absorptivity = laser_->absorptivity();
+    beam.radius = laser_->radius();
+    const point c(laser_->position(tMid));
+    const vector& e = laser_->direction();
+    beam.centre = Eigen::Vector3d(c.x(), c.y(), c.z());
+    beam.direction = Eigen::Vector3d(e.x(), e.y(), e.z());
+    // particles that melted away in the last step (deleted at the next DEM step) cast
+    // no shadow any more
+    std::vector<mc::BeamParticle> local;
+    std::vector<std::size_t> solid;
+    local.reserve(start.size());
+    for (std::size_t i = 0; i < start.size(); ++i)
+    {
+        if (start[i].mass > 0)
+        {
+            local.push_back({start[i].x, start[i].radius});
+            solid.push_back(i);
+        }
+    }
+    shadow_ = mc::shade_particles(comm_, beam, local);
+
+    // by global index (rank order, as the exchange numbers them)
+    const std::size_t offset = exchange.local_offset();
+    absorbed.assign(std::size_t(exchange.global_particles()), 0.0);
+    for (std::size_t k = 0; k < solid.size(); ++k)
+    {
+        absorbed[offset + solid[k]] = shadow_.absorbed[k];
+    }
+    if (!absorbed.empty())
+    {
+        MPI_Allreduce(MPI_IN_PLACE, absorbed.data(), int(absorbed.size()), MPI_DOUBLE, MPI_SUM, comm_);
+    }
+    const mc::ShadowResult* result = &shadow_;
+    laser_->setShadow
+    (
+        [result](const point& p, const scalar footprint)
+        {
+            return scalar(mc::transmitted_fraction(*result, Eigen::Vector3d(p.x(), p.y(), p.z()), footprint));
+        },
+        shadow_.transmitted_power/beam.power
+    );
+}
+
+
+std::unordered_map<std::int64_t, ::meltdem::coupling::FluidState>
+Foam::meltdem::particleSampling::fluidStates
+(
+    const mc::ParallelExchange& exchange,
+    const std::vector<mc::SampledFluid>& sampled,
+    const std::vector<mc::SolidSurface>& solid,
+    const std::vector<double>& light
+) const
+{
+    std::unordered_map<std::int64_t, mc::FluidState> fluid;
+    for (std::int64_t g = 0; g < exchange.global_particles(); ++g)
+    {
+        if (!exchange.global_inside(g)) continue;
+        mc::FluidState& fs = fluid[exchange.global_id(g)];
+        fs = sampled[g].fluid;
+        if (!solid.empty()) fs.solid = solid[g];
+        if (!light.empty()) fs.heat_source = light[g];
+        fs.thermal = thermal_;
+    }
+    return fluid;
+}
