@@ -33,9 +33,7 @@ Description
 #include "fvcSmooth.H"
 
 #include "meltdemProperties.H"
-#include "surfaceForces.H"
-#include "laserHeatSource.H"
-#include "evaporationModel.H"
+#include "physicsTerms.H"
 #include "meltdemBalance.H"
 #include "particleCoupling.H"
 #include "caseCheckpoint.H"
@@ -48,10 +46,21 @@ Description
 
 int main(int argc, char *argv[])
 {
+    // the physics switches and the entries they read, for `meltdem check`
+    for (int i = 1; i < argc; ++i)
+    {
+        if (std::string(argv[i]) == "-listTerms")
+        {
+            Foam::meltdem::physicsTerm::writeTable(std::cout);
+            return 0;
+        }
+    }
+
     argList::addNote
     (
         "Melt-pool solver for powder additive manufacturing: VOF metal/gas,"
         " melting and solidification, surface forces, laser, evaporation."
+        " -listTerms prints the physics switches and their entries (JSON)."
     );
 
     #include "postProcess.H"

@@ -16,11 +16,6 @@ from .lammps_input import LammpsInput
 # entries the solver reads (foam-src/meltdemModels/*, foam-src/meltdemFoam)
 CONTROL = ("startTime", "endTime", "deltaT", "writeInterval")
 SCHEMES = ("ddtSchemes", "gradSchemes", "divSchemes", "laplacianSchemes")
-METAL = ("cp", "k", "L", "Tsolidus", "Tliquidus")
-GAS = ("cp", "k")
-SURFACE = ("sigma0", "dSigmadT", "Tsigma0", "sigmaMin")
-EVAPORATION = ("pAmbient", "CT", "Tboil", "hv", "cp", "Th0", "CM")
-LASER = ("power", "absorptivity", "radius")
 MELT_KEYWORDS = ("cp", "Tmelt", "latent", "temp")
 # SI dimensions [kg m s K mol A cd] of the fields meltdemFoam reads
 DIMENSIONS = {"T": "0 0 0 1 0 0 0", "U": "0 1 -1 0 0 0 0", "p_rgh": "1 -1 -2 0 0 0 0",
@@ -153,6 +148,57 @@ def _need(d, keys, rel, rep, prefix="", positive=False):
         else:
             got[k] = v
     return got
+
+
+RANGE_WORDS = {"> 0": "positive", ">= 0": "non-negative"}
+
+
+def _need_spec(d, entries, rel, rep, prefix=""):
+    """The entries of a sub-dictionary as the solver's table gives them ({key: range}, range '> 0',
+    '>= 0', '' for any number, other: a word); returns the numbers present."""
+    got = {}
+    for k, rng in entries.items():
+        raw = fd.value(d, k)
+        if raw is None:
+            rep.bad(rel, f"{prefix}{k} missing")
+            continue
+        if rng not in RANGE_WORDS and rng != "":
+            continue   # a word entry
+        v = fd.number(d, k)
+        if v is None and fd.non_finite({k: raw}):
+            continue   # reported when the file was read
+        if v is None:
+            toks = [t for t in raw if not isinstance(t, list)]
+            rep.bad(rel, f"{prefix}{k} is not a number ({' '.join(map(str, d[k]))})"
+                    + ("; a missing ';' after it?" if len(toks) > 2 else ""))
+        elif (rng == "> 0" and not v > 0) or (rng == ">= 0" and v < 0):
+            rep.bad(rel, f"{prefix}{k} = {v:g} must be {RANGE_WORDS[rng]}")
+        else:
+            got[k] = v
+    return got
+
+
+_SOLVER_TERMS = []
+
+
+def solver_terms():
+    """The physics switches of meltdemFoam and what each reads (`meltdemFoam -listTerms`, the
+    solver's own table), or None when meltdemFoam is not built."""
+    import json
+    import subprocess
+    if _SOLVER_TERMS:
+        return _SOLVER_TERMS[0]
+    exe = os.path.join(os.environ.get("MELTDEM_BIN") or os.path.join(
+        os.environ.get("MELTDEM_SOURCE_DIR", ""), "build", "bin"), "meltdemFoam")
+    try:
+        env = dict(os.environ)
+        env.setdefault("WM_PROJECT_DIR", "/usr/share/openfoam")
+        out = subprocess.run([exe, "-listTerms"], stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True,
+                             timeout=60, check=True, env=env).stdout
+        _SOLVER_TERMS.append(json.loads(out))
+    except (OSError, subprocess.SubprocessError, ValueError):
+        return None
+    return _SOLVER_TERMS[0]
 
 
 def mesh_box(case, rep):
@@ -295,12 +341,12 @@ def check_insertion_regions(lmp, rel, mesh, rep):
                      f"booked lost at once")
 
 
-def check_laser(d, mesh, rep, rel):
+def check_laser(d, mesh, rep, rel, entries):
     las = d.get("laser")
     if not isinstance(las, dict):
         rep.bad(rel, "laser: sub-dictionary missing (physics laser on)")
         return
-    got = _need(las, LASER, rel, rep, "laser.", positive=True)
+    got = _need_spec(las, entries, rel, rep, "laser.")
     if got.get("absorptivity", 0) > 1:
         rep.bad(rel, f"laser.absorptivity = {got['absorptivity']:g} must be in [0, 1]")
     if mesh is None:
@@ -454,30 +500,36 @@ def check_foam(case, rep):
         if not isinstance(ph, dict):
             rep.bad(rel, "physics missing (the per-term switches)")
             ph = {}
-        physics = {k: fd.switch(ph, k, k == "flow") for k in
-                   ("flow", "energy", "darcy", "surfaceTension", "marangoni", "recoil", "laser",
-                    "evaporation", "buoyancy", "particles")}
+        table = solver_terms()
+        if table is None:
+            rep.note(f"{rel}: meltdemFoam not found (build MeltDEM): the physics switches and their entries "
+                     f"are not checked")
+            return
+        switches = dict(table["core"], **table["terms"])
+        for k in ph:
+            if k not in switches:
+                rep.bad(rel, f"physics.{k}: unknown switch; known switches: {' '.join(sorted(switches))}")
+        physics = {k: fd.switch(ph, k, k == "flow") for k in switches}
         on = [k for k, v in physics.items() if v]
         rep.ok(f"{rel}: physics on: {' '.join(on) or '(none)'}")
-        if physics["energy"]:
-            for sub, keys in (("metal", METAL + (("beta", "Tref") if physics["buoyancy"] else ())), ("gas", GAS)):
+        for name in sorted(on, key=lambda k: (k not in table["core"], switches[k]["order"], k)):
+            info = switches[name]
+            for n in info["needs"]:
+                if not physics.get(n):
+                    rep.bad(rel, f"physics.{name} needs {n} on")
+            for sub, entries in info["entries"].items():
+                if name in ("particles", "laser"):
+                    continue   # their own checks below
                 if not isinstance(md.get(sub), dict):
-                    rep.bad(rel, f"{sub}: sub-dictionary missing (physics energy on)")
+                    rep.bad(rel, f"{sub}: sub-dictionary missing (physics {name} on)")
                     continue
-                got = _need(md[sub], keys, rel, rep, f"{sub}.", positive=True)
-                if "Tsolidus" in got and "Tliquidus" in got and not got["Tliquidus"] > got["Tsolidus"]:
+                got = _need_spec(md[sub], entries, rel, rep, f"{sub}.")
+                if sub == "metal" and "Tsolidus" in got and "Tliquidus" in got \
+                        and not got["Tliquidus"] > got["Tsolidus"]:
                     rep.bad(rel, f"metal.Tsolidus ({got['Tsolidus']:g}) must be below Tliquidus ({got['Tliquidus']:g})")
-            rep.ok(f"{rel}: metal {{{' '.join(METAL)}}}, gas {{{' '.join(GAS)}}}")
-        for term, sub, keys in (("darcy", "darcy", ("C", "b")), ("surfaceTension", "surfaceTension", SURFACE),
-                                ("evaporation", "evaporation", EVAPORATION)):
-            if physics.get(term):
-                if not isinstance(md.get(sub), dict):
-                    rep.bad(rel, f"{sub}: sub-dictionary missing (physics {term} on)")
-                else:
-                    _need(md[sub], keys, rel, rep, f"{sub}.")
-                    rep.ok(f"{rel}: {sub} {{{' '.join(keys)}}}")
-        if physics["laser"]:
-            check_laser(md, mesh, rep, rel)
+                rep.ok(f"{rel}: {sub} {{{' '.join(entries)}}} (physics {name})")
+        if physics.get("laser"):
+            check_laser(md, mesh, rep, rel, table["terms"]["laser"]["entries"]["laser"])
 
     fields = ["alpha.metal", "U", "p_rgh"] + (["T"] if physics.get("energy") else [])
     for f in fields:
@@ -512,8 +564,9 @@ def check_foam(case, rep):
             if fd.word(pd, k) is None:
                 rep.bad(rel, f"particles.{k} missing")
         dist = fd.word(pd, "distribution")
-        if dist and dist not in ("centre", "neighbours", "overlap"):
-            rep.bad(rel, f"particles.distribution {dist} unknown (centre, neighbours, overlap)")
+        models = solver_terms()["core"]["particles"]["entries"]["particles"]["distribution"].split()
+        if dist and dist not in models:
+            rep.bad(rel, f"particles.distribution {dist} unknown ({', '.join(models)})")
         inp = fd.word(pd, "lammpsInput")
         if inp:
             check_lammps(case, inp, rep, mesh, coupled=True, g=gvec)

@@ -254,8 +254,6 @@ def ledger_numbers(led):
 # fixes that move particles without a force the ledger books, or only book what they add
 _MOMENTUM_NEUTRAL_FIXES = ("nve", "nve/sphere", "nve/limit", "powder/insert", "powder/dt", "print", "halt",
                            "balance", "ave/time", "ave/chunk", "ave/histo", "ave/correlate", "ave/atom")
-# meltdemFoam terms that exert forces the continuum's balance does not book
-_MOMENTUM_TERMS = ("darcy", "surfaceTension", "marangoni", "recoil", "buoyancy")
 
 
 def momentum_unbooked(case):
@@ -285,10 +283,13 @@ def momentum_unbooked(case):
                     why.append(f"the solid-metal contact ({name}: fix {w[1]} powder/melt solid_metal)")
             elif not style.startswith(_MOMENTUM_NEUTRAL_FIXES):
                 why.append(f"forces of {name}: fix {w[1]} {style}")
+    # the physics terms acting on momentum (the solver's table): forces the balance does not book
+    from .check import solver_terms
+    table = solver_terms()
     try:
         md = fd.read(os.path.join(case, "constant", "meltdemProperties"))
         ph = md.get("physics") if isinstance(md.get("physics"), dict) else {}
-        on = [k for k in _MOMENTUM_TERMS if fd.switch(ph, k)]
+        on = [k for k, t in (table["terms"] if table else {}).items() if "momentum" in t["acts"] and fd.switch(ph, k)]
         if on:
             why.append(f"the continuum's {', '.join(on)} force(s) (constant/meltdemProperties physics)")
     except (OSError, fd.FoamDictError):

@@ -1,4 +1,7 @@
 #include "meltdemProperties.H"
+#include "physicsTerm.H"
+
+#include <algorithm>
 
 namespace Foam
 {
@@ -39,8 +42,6 @@ meltdemProperties::meltdemProperties(const fvMesh& mesh)
     physics_(),
     metal_(),
     gas_(),
-    darcyC_(0),
-    darcyB_(1),
     nEnergyCorr_(10),
     energyTolerance_(1e-8),
     maxThermalCo_(1),
@@ -52,11 +53,10 @@ meltdemProperties::meltdemProperties(const fvMesh& mesh)
             << "missing sub-dictionary 'physics' (the per-term switches)" << exit(FatalIOError);
     }
     const dictionary& ph = subDict("physics");
-    const wordList known
-    {
-        "flow", "energy", "darcy", "surfaceTension", "marangoni", "recoil", "laser",
-        "evaporation", "buoyancy", "particles"
-    };
+    // the solver's own switches, and every registered physics term (physicsTerm.H)
+    const auto& table = physicsTerm::infoTable();
+    wordList known(coreSwitches());
+    for (const auto& t : table) known.append(word(t.first));
     for (const word& key : ph.toc())
     {
         if (!known.found(key))
@@ -69,34 +69,39 @@ meltdemProperties::meltdemProperties(const fvMesh& mesh)
     // a switch not written is off: a scene names what it needs
     physics_.flow = ph.getOrDefault<bool>("flow", true);
     physics_.energy = ph.getOrDefault<bool>("energy", false);
-    physics_.darcy = ph.getOrDefault<bool>("darcy", false);
-    physics_.surfaceTension = ph.getOrDefault<bool>("surfaceTension", false);
-    physics_.marangoni = ph.getOrDefault<bool>("marangoni", false);
-    physics_.recoil = ph.getOrDefault<bool>("recoil", false);
-    physics_.laser = ph.getOrDefault<bool>("laser", false);
-    physics_.evaporation = ph.getOrDefault<bool>("evaporation", false);
-    physics_.buoyancy = ph.getOrDefault<bool>("buoyancy", false);
     physics_.particles = ph.getOrDefault<bool>("particles", false);
 
-    const auto needs = [&ph](bool on, const char* term, bool other, const char* what)
+    const auto isOn = [&](const std::string& name)
+    {
+        return name == "flow" ? physics_.flow
+             : name == "energy" ? physics_.energy
+             : name == "particles" ? physics_.particles
+             : ph.getOrDefault<bool>(word(name), false);
+    };
+    const auto needs = [&ph](bool on, const std::string& term, bool other, const std::string& what)
     {
         if (on && !other)
         {
             FatalIOErrorInFunction(ph)
-                << "switch '" << term << "' needs '" << what << " on'" << exit(FatalIOError);
+                << "switch '" << term.c_str() << "' needs '" << what.c_str() << " on'"
+                << exit(FatalIOError);
         }
     };
-    needs(physics_.marangoni, "marangoni", physics_.energy, "energy");
-    needs(physics_.marangoni, "marangoni", physics_.surfaceTension, "surfaceTension");
-    needs(physics_.recoil, "recoil", physics_.energy, "energy");
-    needs(physics_.recoil, "recoil", physics_.flow, "flow");
-    needs(physics_.laser, "laser", physics_.energy, "energy");
-    needs(physics_.evaporation, "evaporation", physics_.energy, "energy");
-    needs(physics_.buoyancy, "buoyancy", physics_.energy, "energy");
-    needs(physics_.darcy, "darcy", physics_.energy, "energy");
-    needs(physics_.darcy, "darcy", physics_.flow, "flow");
-    needs(physics_.surfaceTension, "surfaceTension", physics_.flow, "flow");
     needs(physics_.particles, "particles", physics_.flow, "flow");
+    // the terms switched on, in their order
+    std::vector<const physicsTerm::termInfo*> on;
+    for (const auto& t : table)
+    {
+        if (!isOn(t.first)) continue;
+        for (const std::string& n : t.second.needs) needs(true, t.first, isOn(n), n);
+        on.push_back(&t.second);
+    }
+    std::stable_sort
+    (
+        on.begin(), on.end(),
+        [](const physicsTerm::termInfo* a, const physicsTerm::termInfo* b) { return a->order < b->order; }
+    );
+    for (const auto* t : on) terms_.append(word(t->name));
 
     if (physics_.energy)
     {
@@ -111,13 +116,6 @@ meltdemProperties::meltdemProperties(const fvMesh& mesh)
             FatalIOErrorInFunction(md)
                 << "Tsolidus (" << metal_.Tsolidus << ") must be below Tliquidus ("
                 << metal_.Tliquidus << ") in " << md.name() << exit(FatalIOError);
-        }
-        metal_.beta = 0;
-        metal_.Tref = 0;
-        if (physics_.buoyancy)
-        {
-            metal_.beta = readPositive(md, "beta", true);
-            metal_.Tref = readPositive(md, "Tref");
         }
         const dictionary& gd = modelDict("gas");
         gas_.cp = readPositive(gd, "cp");
@@ -142,24 +140,31 @@ meltdemProperties::meltdemProperties(const fvMesh& mesh)
     {
         isothermalT_ = getOrDefault<scalar>("isothermalTemperature", isothermalT_);
     }
-    if (physics_.darcy)
-    {
-        const dictionary& dd = modelDict("darcy");
-        darcyC_ = readPositive(dd, "C");
-        darcyB_ = readPositive(dd, "b");
-    }
 }
 
 
-const dictionary& meltdemProperties::modelDict(const word& name) const
+const Foam::wordList& meltdemProperties::coreSwitches()
 {
-    if (!found(name) || !isDict(name))
+    static const wordList names{"flow", "energy", "particles"};
+    return names;
+}
+
+
+bool meltdemProperties::term(const word& name) const
+{
+    return terms_.found(name);
+}
+
+
+const dictionary& meltdemProperties::modelDict(const dictionary& properties, const word& name)
+{
+    if (!properties.found(name) || !properties.isDict(name))
     {
-        FatalIOErrorInFunction(*this)
-            << "missing sub-dictionary '" << name << "' in " << this->name()
+        FatalIOErrorInFunction(properties)
+            << "missing sub-dictionary '" << name << "' in " << properties.name()
             << exit(FatalIOError);
     }
-    return subDict(name);
+    return properties.subDict(name);
 }
 
 } // End namespace meltdem
