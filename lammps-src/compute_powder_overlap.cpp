@@ -1,5 +1,5 @@
 /* ----------------------------------------------------------------------
-   MeltDEM: compute powder/overlap -- pop-corn measure (thesis 3.2.1).
+   MeltDEM: compute powder/overlap -- pop-corn measure (Codina2019 §3.2.1).
 
    Pop-corn is a contact resolved too late: the overlap grows far beyond what the impact
    speed allows and the Hertz force (eq. 3.5) throws the particles apart. This compute
@@ -64,13 +64,13 @@ template struct Expose<HiTag, &FixWallGran::hi>;
 constexpr int ZPLANE = 2;
 // FixWallGran marks an absent lo/hi plane with +-1e20
 constexpr double NOWALL = 1.0e19;
-}    // namespace
+}  // namespace
 
 /* ---------------------------------------------------------------------- */
 
 ComputePowderOverlap::ComputePowderOverlap(LAMMPS *lmp, int narg, char **arg) :
-    Compute(lmp, narg, arg), threshold(0.05), warnflag(1), nextwarn(0), warnevery(1000),
-    nwarned(0), list(nullptr), planes(nullptr), nplanes(0)
+    Compute(lmp, narg, arg), threshold(0.05), warnflag(1), nextwarn(0), warnevery(1000), nwarned(0), list(nullptr),
+    planes(nullptr), nplanes(0)
 {
   vector_flag = 1;
   size_vector = 4;
@@ -78,8 +78,7 @@ ComputePowderOverlap::ComputePowderOverlap(LAMMPS *lmp, int narg, char **arg) :
 
   int iarg = 3;
   while (iarg < narg) {
-    if (iarg + 2 > narg)
-      error->all(FLERR, "Compute powder/overlap keyword {} needs 1 value", arg[iarg]);
+    if (iarg + 2 > narg) error->all(FLERR, "Compute powder/overlap keyword {} needs 1 value", arg[iarg]);
     if (strcmp(arg[iarg], "threshold") == 0) {
       threshold = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
       if (threshold <= 0.0) error->all(FLERR, "Compute powder/overlap threshold must be > 0");
@@ -89,16 +88,14 @@ ComputePowderOverlap::ComputePowderOverlap(LAMMPS *lmp, int narg, char **arg) :
       else {
         warnflag = 1;
         warnevery = utils::bnumeric(FLERR, arg[iarg + 1], false, lmp);
-        if (warnevery <= 0)
-          error->all(FLERR, "Compute powder/overlap warn must be no or a number of steps > 0");
+        if (warnevery <= 0) error->all(FLERR, "Compute powder/overlap warn must be no or a number of steps > 0");
       }
     } else
       error->all(FLERR, "Compute powder/overlap: unknown keyword {}", arg[iarg]);
     iarg += 2;
   }
 
-  if (!atom->radius_flag)
-    error->all(FLERR, "Compute powder/overlap requires atom_style sphere (per-atom radius)");
+  if (!atom->radius_flag) error->all(FLERR, "Compute powder/overlap requires atom_style sphere (per-atom radius)");
   vector = new double[size_vector];
   for (int i = 0; i < size_vector; i++) vector[i] = 0.0;
 }
@@ -115,8 +112,7 @@ ComputePowderOverlap::~ComputePowderOverlap()
 
 void ComputePowderOverlap::init()
 {
-  if (force->pair == nullptr)
-    error->all(FLERR, "Compute powder/overlap requires a pair style be defined");
+  if (force->pair == nullptr) error->all(FLERR, "Compute powder/overlap requires a pair style be defined");
 
   // an occasional half list with the granular size cutoff, as compute contact/atom
   int irequest = neighbor->request(this, instance_me);
@@ -229,7 +225,7 @@ void ComputePowderOverlap::compute_vector()
                      "Compute powder/overlap {}: pop-corn at step {}: {} contacts with "
                      "overlap/radius > {}, largest {:.4g} (reduce the time step, e.g. fix "
                      "powder/dt steps)",
-                     id, update->ntimestep, (bigint) vector[1], threshold, vector[0]);
+                     id, update->ntimestep, (bigint)vector[1], threshold, vector[0]);
     nextwarn = update->ntimestep + warnevery;
     nwarned++;
   }

@@ -1,5 +1,5 @@
 /* -*- c++ -*- ----------------------------------------------------------
-   MeltDEM: compute powder/overlap -- measures "pop-corn" (thesis 3.2.1): the
+   MeltDEM: compute powder/overlap -- measures "pop-corn" (Codina2019 §3.2.1): the
    largest overlap/radius over all contacts and the contacts above a threshold.
 ------------------------------------------------------------------------- */
 
@@ -26,11 +26,11 @@ class ComputePowderOverlap : public Compute {
   void compute_vector() override;
 
  private:
-  double threshold;    // overlap/radius above which a contact counts as pop-corn
-  int warnflag;        // 1: warn when the threshold is exceeded
-  bigint nextwarn;     // earliest step of the next warning (rate limit)
-  bigint warnevery;    // steps between two warnings
-  int nwarned;         // warnings given so far
+  double threshold;  // overlap/radius above which a contact counts as pop-corn
+  int warnflag;      // 1: warn when the threshold is exceeded
+  bigint nextwarn;   // earliest step of the next warning (rate limit)
+  bigint warnevery;  // steps between two warnings
+  int nwarned;       // warnings given so far
   class NeighList *list;
 
   struct Plane {
@@ -42,7 +42,7 @@ class ComputePowderOverlap : public Compute {
   void find_walls();
 };
 
-}    // namespace LAMMPS_NS
+}  // namespace LAMMPS_NS
 
 #endif
 #endif

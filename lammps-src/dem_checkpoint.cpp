@@ -51,8 +51,7 @@ std::vector<long long> complete_steps(const std::string &dir)
       char *end = nullptr;
       const long long s = std::strtoll(e->d_name, &end, 10);
       struct stat st;
-      if (end != e->d_name && *end == '\0' &&
-          ::stat((dir + "/" + e->d_name + "/" + kComplete).c_str(), &st) == 0)
+      if (end != e->d_name && *end == '\0' && ::stat((dir + "/" + e->d_name + "/" + kComplete).c_str(), &st) == 0)
         steps.push_back(s);
     }
     closedir(d);
@@ -83,9 +82,7 @@ std::vector<std::string> plain_words(const std::string &text)
 
 class CheckpointedInput {
  public:
-  CheckpointedInput(LAMMPS *lmp, std::string dir, long long every) : lmp_(lmp), dir_(std::move(dir)), every_(every)
-  {
-  }
+  CheckpointedInput(LAMMPS *lmp, std::string dir, long long every) : lmp_(lmp), dir_(std::move(dir)), every_(every) {}
 
   void execute(const std::vector<InputCommand> &commands, bool resume)
   {
@@ -114,7 +111,8 @@ class CheckpointedInput {
         }
         continue;
       }
-      if (run) run_command(run_index, c);
+      if (run)
+        run_command(run_index, c);
       else {
         lmp_->input->one(c.text);
         note(c);
@@ -161,12 +159,18 @@ class CheckpointedInput {
     std::string key, value;
     int found = 0;
     while (in >> key >> value) {
-      if (key == "run_index") at.run_index = std::atoi(value.c_str()), ++found;
-      else if (key == "end") at.end = std::atoll(value.c_str()), ++found;
-      else if (key == "start") at.start = std::atoll(value.c_str()), ++found;
-      else if (key == "stop") at.stop = std::atoll(value.c_str()), ++found;
-      else if (key == "time") at.time = std::strtod(value.c_str(), nullptr), ++found;
-      else if (key == "every") every_ = std::atoll(value.c_str()), ++found;
+      if (key == "run_index")
+        at.run_index = std::atoi(value.c_str()), ++found;
+      else if (key == "end")
+        at.end = std::atoll(value.c_str()), ++found;
+      else if (key == "start")
+        at.start = std::atoll(value.c_str()), ++found;
+      else if (key == "stop")
+        at.stop = std::atoll(value.c_str()), ++found;
+      else if (key == "time")
+        at.time = std::strtod(value.c_str(), nullptr), ++found;
+      else if (key == "every")
+        every_ = std::atoll(value.c_str()), ++found;
     }
     if (found != 6) fail("Cannot resume: the checkpoint " + ck + "/" + kState + " is unreadable");
     replay_ = std::make_unique<InputReplay>(ck + "/" + FixPowderCheckpoint::kRestartFile,
@@ -194,11 +198,15 @@ class CheckpointedInput {
     at.run_index = run_index;
     bool upto = false, start = false, stop = false;
     for (std::size_t k = 2; k < w.size(); ++k) {
-      if (w[k] == "upto") upto = true;
-      else if (w[k] == "start" && k + 1 < w.size()) start = true, at.start = std::atoll(w[++k].c_str());
-      else if (w[k] == "stop" && k + 1 < w.size()) stop = true, at.stop = std::atoll(w[++k].c_str());
+      if (w[k] == "upto")
+        upto = true;
+      else if (w[k] == "start" && k + 1 < w.size())
+        start = true, at.start = std::atoll(w[++k].c_str());
+      else if (w[k] == "stop" && k + 1 < w.size())
+        stop = true, at.stop = std::atoll(w[++k].c_str());
       else if (w[k] == "every")
-        fail("Cannot checkpoint " + c.where + ": a run ... every cannot be resumed in the middle; write the loop "
+        fail("Cannot checkpoint " + c.where +
+             ": a run ... every cannot be resumed in the middle; write the loop "
              "out, or run without -checkpoint");
     }
     const long long n = w.size() > 1 ? std::atoll(w[1].c_str()) : 0;
@@ -245,8 +253,8 @@ class CheckpointedInput {
         char t[64];
         std::snprintf(t, sizeof t, "%a", u->atime + double(u->ntimestep - u->atimestep) * u->dt);
         std::ofstream os(ck + "/" + kState, std::ios::trunc);
-        os << "run_index " << at_.run_index << "\nend " << at_.end << "\nstart " << at_.start << "\nstop "
-           << at_.stop << "\ntime " << t << "\nevery " << every_ << '\n';
+        os << "run_index " << at_.run_index << "\nend " << at_.end << "\nstart " << at_.start << "\nstop " << at_.stop
+           << "\ntime " << t << "\nevery " << every_ << '\n';
         os.close();
         if (!os) throw LammpsSetupError("cannot write " + ck + "/" + kState + ": " + std::strerror(errno));
         std::ofstream done(ck + "/" + kComplete, std::ios::trunc);

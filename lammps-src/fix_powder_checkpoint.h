@@ -48,7 +48,7 @@ class FixPowderCheckpoint : public Fix {
   bool due(bigint step) const;
 };
 
-}    // namespace LAMMPS_NS
+}  // namespace LAMMPS_NS
 
 #endif
 #endif

@@ -1,7 +1,7 @@
 /* ----------------------------------------------------------------------
    MeltDEM: fix powder/dt -- DEM time step from the Hertz contact time.
 
-   dt = t_c / S with t_c the shortest Hertz contact time (thesis eq. 3.1-3.3) of the
+   dt = t_c / S with t_c the shortest Hertz contact time (Codina2019 eq. 3.1-3.3) of the
    current particles: two equal spheres of the smallest radius and smallest density, the
    largest E* of the granular pair style, at the approach speed U = max(2 max|v|, vmin).
    That pair has the shortest contact of any pair or particle-wall contact, and
@@ -63,13 +63,13 @@ template struct Expose<NormalTag, &PairGranular::normal_model>;
 // PairGranular's enum of normal models (pair_granular.cpp)
 constexpr int HERTZ_MATERIAL = 2;
 constexpr double BIG = std::numeric_limits<double>::max();
-}    // namespace
+}  // namespace
 
 /* ---------------------------------------------------------------------- */
 
 FixPowderDt::FixPowderDt(LAMMPS *lmp, int narg, char **arg) :
-    Fix(lmp, narg, arg), steps(0.0), dtmax(0.0), interval(0.0), vfloor(0.01), maxoverlap(0.3), estar(0.0),
-    uhold(0.0), thold(0.0), respaflag(0)
+    Fix(lmp, narg, arg), steps(0.0), dtmax(0.0), interval(0.0), vfloor(0.01), maxoverlap(0.3), estar(0.0), uhold(0.0),
+    thold(0.0), respaflag(0)
 {
   // time_depend: elapsed time is accumulated across dt changes
   time_depend = 1;
@@ -139,8 +139,7 @@ void FixPowderDt::init()
   for (int i = 0; i < modify->nfix; i++) {
     Fix *f = modify->fix[i];
     if (f != this && (utils::strmatch(f->style, "^dt/reset") || strcmp(f->style, "powder/dt") == 0))
-      error->all(FLERR, "Fix powder/dt {} and fix {} {} both set the time step: use one of them", id, f->id,
-                 f->style);
+      error->all(FLERR, "Fix powder/dt {} and fix {} {} both set the time step: use one of them", id, f->id, f->style);
   }
   read_pair_modulus();
 }
@@ -176,8 +175,8 @@ void FixPowderDt::read_pair_modulus()
     try {
       return mc::effective_modulus(E1, nu1, E2, nu2);
     } catch (const std::invalid_argument &e) {
-      error->all(FLERR, "Fix powder/dt: pair_coeff {} {} of pair_style {}: {} (E {} nu {})", a, b,
-                 force->pair_style, e.what(), a == b ? E1 : E2, a == b ? nu1 : nu2);
+      error->all(FLERR, "Fix powder/dt: pair_coeff {} {} of pair_style {}: {} (E {} nu {})", a, b, force->pair_style,
+                 e.what(), a == b ? E1 : E2, a == b ? nu1 : nu2);
     }
     return 0.0;
   };
@@ -280,7 +279,7 @@ void FixPowderDt::update_dt()
 
   out[0] = dt;
   out[1] = tc;
-  out[2] = interval > 0.0 ? (double) mc::dem_subcycles(interval, dt) : 0.0;
+  out[2] = interval > 0.0 ? (double)mc::dem_subcycles(interval, dt) : 0.0;
   out[3] = rmin;
   out[4] = U;
   out[5] = estar;

@@ -1,6 +1,6 @@
 /* -*- c++ -*- ----------------------------------------------------------
    MeltDEM: fix powder/dt -- DEM time step from the Hertz contact time
-   (thesis eq. 3.1-3.4). The physics lives in coupling/dem_step_control.h.
+   (Codina2019 eq. 3.1-3.4). The physics lives in coupling/dem_step_control.h.
 ------------------------------------------------------------------------- */
 
 #ifdef FIX_CLASS
@@ -27,13 +27,13 @@ class FixPowderDt : public Fix {
   double compute_vector(int) override;
 
  private:
-  double steps;          // collisionResolutionSteps S
-  double dtmax;          // cap on dt (0: none)
-  double interval;       // coupling interval for the sub-cycle count (0: none)
-  double vfloor;         // floor of the approach speed [m/s]
-  double maxoverlap;     // largest head-on overlap / radius allowed (Hertz validity)
-  double estar;          // largest E* of the pair style's type pairs [Pa]
-  double uhold, thold;   // held approach speed and the time it was recorded
+  double steps;         // collisionResolutionSteps S
+  double dtmax;         // cap on dt (0: none)
+  double interval;      // coupling interval for the sub-cycle count (0: none)
+  double vfloor;        // floor of the approach speed [m/s]
+  double maxoverlap;    // largest head-on overlap / radius allowed (Hertz validity)
+  double estar;         // largest E* of the pair style's type pairs [Pa]
+  double uhold, thold;  // held approach speed and the time it was recorded
   int respaflag;
   // output: dt, t_contact, sub-cycles, R_min, U used, E*, rho used
   double out[7];
@@ -42,7 +42,7 @@ class FixPowderDt : public Fix {
   void update_dt();
 };
 
-}    // namespace LAMMPS_NS
+}  // namespace LAMMPS_NS
 
 #endif
 #endif

@@ -5,7 +5,7 @@
    the region (gathered from all ranks, periodic images included), against the particles
    placed in the same step, against granular walls and against the region surface.
    A particle that fails 'attempts' trial positions stays in a FIFO pending queue with its
-   drawn diameter and is retried first on later steps (thesis 3.2.2), so neither the size
+   drawn diameter and is retried first on later steps (Codina2019 §3.2.2), so neither the size
    distribution is biased nor any particle lost. All ranks draw the same random numbers
    and take the same decisions; diameters come from their own stream, so a seed gives
    the same diameter sequence for any processor count.
@@ -81,7 +81,7 @@ struct Reader {
     return v;
   }
 };
-}    // namespace
+}  // namespace
 
 /* ---------------------------------------------------------------------- */
 
@@ -135,8 +135,7 @@ FixPowderInsert::FixPowderInsert(LAMMPS *lmp, int narg, char **arg) :
     if (kw == "region") {
       need(1, "region");
       iregion = domain->find_region(arg[iarg + 1]);
-      if (iregion == -1)
-        error->all(FLERR, fmt::format("Fix powder/insert region ID {} does not exist", arg[iarg + 1]));
+      if (iregion == -1) error->all(FLERR, fmt::format("Fix powder/insert region ID {} does not exist", arg[iarg + 1]));
       idregion = utils::strdup(arg[iarg + 1]);
       iarg += 2;
     } else if (kw == "diam") {
@@ -156,9 +155,12 @@ FixPowderInsert::FixPowderInsert(LAMMPS *lmp, int narg, char **arg) :
           need(5, ("diam " + style).c_str());
           double p[4];
           for (int k = 0; k < 4; k++) p[k] = utils::numeric(FLERR, arg[iarg + 2 + k], false, lmp);
-          if (style == "normal") dist = SizeDistribution::normal(p[0], p[1], p[2], p[3]);
-          else if (style == "lognormal") dist = SizeDistribution::lognormal(p[0], p[1], p[2], p[3]);
-          else dist = SizeDistribution::rosin_rammler(p[0], p[1], p[2], p[3]);
+          if (style == "normal")
+            dist = SizeDistribution::normal(p[0], p[1], p[2], p[3]);
+          else if (style == "lognormal")
+            dist = SizeDistribution::lognormal(p[0], p[1], p[2], p[3]);
+          else
+            dist = SizeDistribution::rosin_rammler(p[0], p[1], p[2], p[3]);
           iarg += 6;
         } else if (style == "table") {
           need(2, "diam table");
@@ -167,7 +169,8 @@ FixPowderInsert::FixPowderInsert(LAMMPS *lmp, int narg, char **arg) :
           int len = 0, ok = 1;
           if (comm->me == 0) {
             FILE *fp = fopen(arg[iarg + 2], "r");
-            if (!fp) ok = 0;
+            if (!fp)
+              ok = 0;
             else {
               char chunk[4096];
               size_t n;
@@ -247,9 +250,12 @@ FixPowderInsert::FixPowderInsert(LAMMPS *lmp, int narg, char **arg) :
       stall_limit = utils::bnumeric(FLERR, arg[iarg + 1], false, lmp);
       if (stall_limit <= 0) error->all(FLERR, "Illegal fix powder/insert command: stall tries must be > 0");
       const std::string act = arg[iarg + 2];
-      if (act == "warn") stall_error = 0;
-      else if (act == "error") stall_error = 1;
-      else error->all(FLERR, fmt::format("Illegal fix powder/insert command: stall action {} (use warn or error)", act));
+      if (act == "warn")
+        stall_error = 0;
+      else if (act == "error")
+        stall_error = 1;
+      else
+        error->all(FLERR, fmt::format("Illegal fix powder/insert command: stall action {} (use warn or error)", act));
       iarg += 3;
     } else {
       error->all(FLERR, fmt::format("Illegal fix powder/insert command: unknown keyword {}", kw));
@@ -269,7 +275,8 @@ FixPowderInsert::FixPowderInsert(LAMMPS *lmp, int narg, char **arg) :
   if (region->extent_xhi - region->extent_xlo < need_len || region->extent_yhi - region->extent_ylo < need_len ||
       region->extent_zhi - region->extent_zlo < need_len)
     error->all(FLERR, fmt::format("Fix powder/insert region {} cannot hold the particles: its bounding box is "
-                                  "smaller than dmax + 2 gap = {}", idregion, need_len));
+                                  "smaller than dmax + 2 gap = {}",
+                                  idregion, need_len));
 
   ndrawn = ninserted = nfailed = 0;
   mass_inserted = 0.0;
@@ -508,9 +515,9 @@ void FixPowderInsert::pre_exchange()
   // hash grid: a candidate can only touch particles in its own and the 26 next cells
   const double cell = rnew + rmax_near + gap;
   auto key_of = [&](const double *p, int dx, int dy, int dz) {
-    const int64_t i = (int64_t) floor((p[0] - blo[0]) / cell) + 2 + dx;
-    const int64_t j = (int64_t) floor((p[1] - blo[1]) / cell) + 2 + dy;
-    const int64_t k = (int64_t) floor((p[2] - blo[2]) / cell) + 2 + dz;
+    const int64_t i = (int64_t)floor((p[0] - blo[0]) / cell) + 2 + dx;
+    const int64_t j = (int64_t)floor((p[1] - blo[1]) / cell) + 2 + dy;
+    const int64_t k = (int64_t)floor((p[2] - blo[2]) / cell) + 2 + dz;
     return (i << 42) ^ (j << 21) ^ k;
   };
   std::unordered_map<int64_t, std::vector<int>> grid;
@@ -535,7 +542,7 @@ void FixPowderInsert::pre_exchange()
 
   // place the queue in order; stop at the first particle that finds no room this step,
   // so particles are inserted in the order they were drawn
-  std::vector<double> placed;    // x y z d of the particles placed now
+  std::vector<double> placed;  // x y z d of the particles placed now
   while (!pending.empty()) {
     const double d = pending.front(), r = 0.5 * d;
     double c[3];
@@ -591,11 +598,10 @@ void FixPowderInsert::pre_exchange()
   for (int k = 0; k < nnew; k++) {
     double c[3] = {placed[4 * k], placed[4 * k + 1], placed[4 * k + 2]};
     const double d = placed[4 * k + 3];
-    imageint image = ((imageint) IMGMAX << IMG2BITS) | ((imageint) IMGMAX << IMGBITS) | IMGMAX;
+    imageint image = ((imageint)IMGMAX << IMG2BITS) | ((imageint)IMGMAX << IMGBITS) | IMGMAX;
     domain->remap(c, image);
     mass_inserted += particle_mass(d);
-    if (c[0] < olo[0] || c[0] >= ohi[0] || c[1] < olo[1] || c[1] >= ohi[1] || c[2] < olo[2] || c[2] >= ohi[2])
-      continue;
+    if (c[0] < olo[0] || c[0] >= ohi[0] || c[1] < olo[1] || c[1] >= ohi[1] || c[2] < olo[2] || c[2] >= ohi[2]) continue;
     atom->avec->create_atom(ntype, c);
     const int n = atom->nlocal - 1;
     atom->tag[n] = maxtag_all + k + 1;
@@ -619,7 +625,8 @@ void FixPowderInsert::pre_exchange()
         "Fix powder/insert {}: no particle placed in {} insertion tries in a row ({} trial positions each), "
         "{} particles pending (next d = {:.4g}): region {} has no room. The particles wait; to make progress "
         "enlarge region {} or empty it faster, raise attempts, lower gap, or lower rate/massrate "
-        "(stall {} {})", id, nstall, maxattempt, pending.size(), pending.front(), idregion, idregion, stall_limit,
+        "(stall {} {})",
+        id, nstall, maxattempt, pending.size(), pending.front(), idregion, idregion, stall_limit,
         stall_error ? "error" : "warn");
     if (stall_error) error->all(FLERR, msg);
     if (comm->me == 0) error->warning(FLERR, msg);
@@ -643,18 +650,25 @@ void FixPowderInsert::pre_exchange()
 double FixPowderInsert::compute_vector(int n)
 {
   switch (n) {
-    case 0: return ninserted;
-    case 1: return pending.size();
-    case 2: return nfailed;
-    case 3: return mass_inserted;
+    case 0:
+      return ninserted;
+    case 1:
+      return pending.size();
+    case 2:
+      return nfailed;
+    case 3:
+      return mass_inserted;
     case 4: {
       double m = 0.0;
       for (double d : pending) m += particle_mass(d);
       return m;
     }
-    case 5: return ndrawn;
-    case 6: return nstall;
-    default: return 0.0;
+    case 5:
+      return ndrawn;
+    case 6:
+      return nstall;
+    default:
+      return 0.0;
   }
 }
 

@@ -1,6 +1,6 @@
 /* -*- c++ -*- ----------------------------------------------------------
    MeltDEM: fix powder/insert -- overlap-free powder insertion with a pending
-   queue (thesis 3.2.2). Size distributions and the random stream live in coupling/.
+   queue (Codina2019 §3.2.2). Size distributions and the random stream live in coupling/.
 ------------------------------------------------------------------------- */
 
 #ifdef FIX_CLASS
@@ -50,37 +50,37 @@ class FixPowderInsert : public Fix {
   double new_temperature() const { return temp; }
 
  private:
-  bigint ninsert;      // N requested
-  int ntype;           // atom type of the new particles
+  bigint ninsert;  // N requested
+  int ntype;       // atom type of the new particles
   int iregion;
   char *idregion;
   double density;
-  int ratemode;        // ALL, RATE (particles/time) or MASSRATE (mass/time)
+  int ratemode;  // ALL, RATE (particles/time) or MASSRATE (mass/time)
   double rate;
   double vnew[3];
   int tempflag;
   double temp;
   int maxattempt;
   double gap;
-  int insert_every;          // insertion tried at most every insert_every steps
-  bigint stall_limit;        // insertion tries in a row that place nothing before the stall message
-  int stall_error;           // 1: the stall message stops the run, 0: it is a warning
-  bigint nstall;             // insertion tries in a row that placed nothing (not in restarts)
+  int insert_every;    // insertion tried at most every insert_every steps
+  bigint stall_limit;  // insertion tries in a row that place nothing before the stall message
+  int stall_error;     // 1: the stall message stops the run, 0: it is a warning
+  bigint nstall;       // insertion tries in a row that placed nothing (not in restarts)
 
   meltdem::coupling::SizeDistribution dist;
-  meltdem::coupling::Rng64 rng_size;   // draws diameters only: same sequence on any #procs
-  meltdem::coupling::Rng64 rng_pos;    // draws positions
+  meltdem::coupling::Rng64 rng_size;  // draws diameters only: same sequence on any #procs
+  meltdem::coupling::Rng64 rng_pos;   // draws positions
 
   // state (saved in restart files)
   std::deque<double> pending;  // diameters drawn and due, not yet placed (FIFO)
   bigint ndrawn;               // diameters drawn so far (= inserted + pending)
   bigint ninserted;
-  bigint nfailed;              // rejected trial positions
+  bigint nfailed;  // rejected trial positions
   double mass_inserted;
-  double credit;               // accumulated rate*dt (particles or mass) not yet drawn
-  double lookahead;            // massrate: next diameter, drawn but not yet due (0: none)
+  double credit;     // accumulated rate*dt (particles or mass) not yet drawn
+  double lookahead;  // massrate: next diameter, drawn but not yet due (0: none)
   bigint last_insert_step;
-  tagint last_tag;            // the largest atom ID this fix has given (never reused)
+  tagint last_tag;  // the largest atom ID this fix has given (never reused)
 
   class FixPowderMelt *fixmelt;
 
@@ -91,7 +91,7 @@ class FixPowderInsert : public Fix {
   int wall_overlap(double *, double);
 };
 
-}    // namespace LAMMPS_NS
+}  // namespace LAMMPS_NS
 
 #endif
 #endif

@@ -34,8 +34,9 @@ namespace mc = meltdem::coupling;
 /* ---------------------------------------------------------------------- */
 
 FixPowderMelt::FixPowderMelt(LAMMPS *lmp, int narg, char **arg) :
-    Fix(lmp, narg, arg), drag_model(mc::DragModel::Thesis), T0(0.0), ambient_flag(0),
-    provider(nullptr), in_setup(0), solid_flag(0), solid_estar(0.0), solid_alpha(0.0), melt(nullptr), exchange(nullptr), nmax_exchange(0), vector_dirty(1)
+    Fix(lmp, narg, arg), drag_model(mc::DragModel::Thesis), T0(0.0), ambient_flag(0), provider(nullptr), in_setup(0),
+    solid_flag(0), solid_estar(0.0), solid_alpha(0.0), melt(nullptr), exchange(nullptr), nmax_exchange(0),
+    vector_dirty(1)
 {
   if (strcmp(update->unit_style, "si") != 0)
     error->all(FLERR, "Fix powder/melt requires units si (its heat and drag laws use SI values)");
@@ -54,16 +55,16 @@ FixPowderMelt::FixPowderMelt(LAMMPS *lmp, int narg, char **arg) :
     radvary = r && m;
   }
   if (!radvary)
-    error->all(FLERR, "Fix powder/melt requires atom_style sphere 1 (particle radius and mass "
-                      "change as they melt; atom_style {} does not communicate them)",
+    error->all(FLERR,
+               "Fix powder/melt requires atom_style sphere 1 (particle radius and mass "
+               "change as they melt; atom_style {} does not communicate them)",
                atom->atom_style);
 
   int have_cp = 0, have_tm = 0, have_l = 0, have_t0 = 0;
   mc::FluidState amb;
   int iarg = 3;
   auto value = [&](const char *kw, int n) {
-    if (iarg + n >= narg)
-      error->all(FLERR, "Illegal fix powder/melt command: keyword {} needs {} value(s)", kw, n);
+    if (iarg + n >= narg) error->all(FLERR, "Illegal fix powder/melt command: keyword {} needs {} value(s)", kw, n);
   };
   while (iarg < narg) {
     if (strcmp(arg[iarg], "cp") == 0) {
@@ -89,8 +90,9 @@ FixPowderMelt::FixPowderMelt(LAMMPS *lmp, int narg, char **arg) :
     } else if (strcmp(arg[iarg], "ambient") == 0) {
       for (int k = 1; k <= 8; k++)
         if (iarg + k >= narg || !utils::is_double(arg[iarg + k]))
-          error->all(FLERR, "Illegal fix powder/melt command: ambient needs 8 values "
-                            "(TF KF RHOF MUF CPF UX UY UZ), value {} is {}",
+          error->all(FLERR,
+                     "Illegal fix powder/melt command: ambient needs 8 values "
+                     "(TF KF RHOF MUF CPF UX UY UZ), value {} is {}",
                      k, iarg + k >= narg ? "missing" : arg[iarg + k]);
       amb.T = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
       amb.k = utils::numeric(FLERR, arg[iarg + 2], false, lmp);
@@ -109,8 +111,7 @@ FixPowderMelt::FixPowderMelt(LAMMPS *lmp, int narg, char **arg) :
       value("solid_metal", 2);
       solid_estar = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
       const double e = utils::numeric(FLERR, arg[iarg + 2], false, lmp);
-      if (!(solid_estar > 0.0))
-        error->all(FLERR, "Fix powder/melt solid_metal: effective modulus E* must be > 0 Pa");
+      if (!(solid_estar > 0.0)) error->all(FLERR, "Fix powder/melt solid_metal: effective modulus E* must be > 0 Pa");
       if (!(e > 0.0) || e > 1.0)
         error->all(FLERR, "Fix powder/melt solid_metal: restitution must be in (0, 1], not {}", e);
       solid_alpha = mc::alpha_for_restitution(e);
@@ -123,8 +124,7 @@ FixPowderMelt::FixPowderMelt(LAMMPS *lmp, int narg, char **arg) :
       else if (strcmp(arg[iarg + 1], "schiller-naumann") == 0)
         drag_model = mc::DragModel::SchillerNaumann;
       else
-        error->all(FLERR, "Fix powder/melt drag model {} unknown (use thesis or schiller-naumann)",
-                   arg[iarg + 1]);
+        error->all(FLERR, "Fix powder/melt drag model {} unknown (use thesis or schiller-naumann)", arg[iarg + 1]);
       iarg += 2;
     } else
       error->all(FLERR, "Illegal fix powder/melt command: unknown keyword {}", arg[iarg]);
@@ -137,8 +137,7 @@ FixPowderMelt::FixPowderMelt(LAMMPS *lmp, int narg, char **arg) :
   if (!(mat.Tmelt > 0.0)) error->all(FLERR, "Fix powder/melt Tmelt must be > 0");
   if (!(mat.latent > 0.0)) error->all(FLERR, "Fix powder/melt latent must be > 0");
   if (have_t0 && (!(T0 >= 0.0) || !(T0 <= mat.Tmelt)))
-    error->all(FLERR, "Fix powder/melt temp {} outside [0, Tmelt = {}] (particles are solid)", T0,
-               mat.Tmelt);
+    error->all(FLERR, "Fix powder/melt temp {} outside [0, Tmelt = {}] (particles are solid)", T0, mat.Tmelt);
 
   if (ambient_flag) {
     ambient = std::make_unique<mc::UniformFluid>(amb);
@@ -210,7 +209,7 @@ const double *FixPowderMelt::gravity(double *g) const
   g[0] = g[1] = g[2] = 0.0;
   for (int ifix : gravity_fixes) {
     int dim;
-    auto *gvec = (double *) modify->fix[ifix]->extract("gvec", dim);
+    auto *gvec = (double *)modify->fix[ifix]->extract("gvec", dim);
     if (gvec)
       for (int k = 0; k < 3; k++) g[k] += gvec[k];
   }
@@ -264,7 +263,7 @@ void FixPowderMelt::pre_exchange()
 
 int FixPowderMelt::delete_molten()
 {
-  return (int) delete_local([this](int i) {
+  return (int)delete_local([this](int i) {
     if (melt[i][MOLTEN] == 0.0) return false;
     finished.push_back(record(i));  // the coupling still has to hand its last melt over
     return true;
@@ -536,7 +535,7 @@ void FixPowderMelt::write_restart(FILE *fp)
 
 void FixPowderMelt::restart(char *buf)
 {
-  auto *list = (double *) buf;
+  auto *list = (double *)buf;
   for (int k = 0; k < 6; k++) {
     if (comm->me == 0)
       ledger[k].set(list[k], list[6 + k]);
@@ -612,7 +611,7 @@ int FixPowderMelt::maxsize_restart()
 
 double FixPowderMelt::memory_usage()
 {
-  return (double) atom->nmax * NCOL * sizeof(double) + (double) nmax_exchange * sizeof(StepExchange);
+  return (double)atom->nmax * NCOL * sizeof(double) + (double)nmax_exchange * sizeof(StepExchange);
 }
 
 /* ----------------------------------------------------------------------
@@ -646,7 +645,8 @@ void FixPowderMelt::interval_records(std::vector<mc::ExchangeRecord> &out) const
     if (atom->mask[i] & groupbit) out.push_back(record(i));
   // by ID: the coupling's sums then do not depend on LAMMPS's atom order, which a sort or
   // a restart changes (a resumed run equals the uninterrupted one bit for bit)
-  std::sort(out.begin(), out.end(), [](const mc::ExchangeRecord &a, const mc::ExchangeRecord &b) { return a.id < b.id; });
+  std::sort(out.begin(), out.end(),
+            [](const mc::ExchangeRecord &a, const mc::ExchangeRecord &b) { return a.id < b.id; });
 }
 
 void FixPowderMelt::reset_interval()

@@ -1,6 +1,6 @@
 /* -*- c++ -*- ----------------------------------------------------------
    MeltDEM: fix powder/melt -- heating, drag, buoyancy and melting of particles
-   (thesis eq. 2.3, 2.9, 2.11, 2.13, 2.14). The physics lives in coupling/.
+   (Codina2019 eq. 2.3, 2.9, 2.11, 2.13, 2.14). The physics lives in coupling/.
 ------------------------------------------------------------------------- */
 
 #ifdef FIX_CLASS
@@ -97,8 +97,36 @@ class FixPowderMelt : public Fix {
   // (two-body drag; P_SET 0: not yet taken from the fluid this interval). S_*: the
   // particle's memory of its solid-metal contact (mc::SolidContactMemory), kept across
   // intervals
-  enum { TEMP, FRAC, HSPEC, MASS0, MOLTEN, S_OFFSET, S_HAS, S_PX, S_PY, S_PZ, S_NX, S_NY, S_NZ, I_MASS, I_ENTH, I_PX, I_PY, I_PZ, I_HEAT, I_DX, I_DY, I_DZ, I_LASER,
-         P_UX, P_UY, P_UZ, P_SET, NCOL };
+  enum {
+    TEMP,
+    FRAC,
+    HSPEC,
+    MASS0,
+    MOLTEN,
+    S_OFFSET,
+    S_HAS,
+    S_PX,
+    S_PY,
+    S_PZ,
+    S_NX,
+    S_NY,
+    S_NZ,
+    I_MASS,
+    I_ENTH,
+    I_PX,
+    I_PY,
+    I_PZ,
+    I_HEAT,
+    I_DX,
+    I_DY,
+    I_DZ,
+    I_LASER,
+    P_UX,
+    P_UY,
+    P_UZ,
+    P_SET,
+    NCOL
+  };
   std::vector<meltdem::coupling::ExchangeRecord> finished;  // deleted this interval
   meltdem::coupling::ExchangeRecord record(int i) const;
   meltdem::coupling::MeltMaterial mat;
@@ -108,7 +136,7 @@ class FixPowderMelt : public Fix {
   std::unique_ptr<meltdem::coupling::UniformFluid> ambient;
   const meltdem::coupling::FluidStateProvider *provider;
   int in_setup;
-  int solid_flag;           // solid_metal keyword: the continuum's solid metal is a wall
+  int solid_flag;  // solid_metal keyword: the continuum's solid metal is a wall
   double solid_estar, solid_alpha;
 
   double **melt;           // per-atom state, columns above
@@ -130,7 +158,7 @@ class FixPowderMelt : public Fix {
   bigint delete_local(const std::function<bool(int)> &doomed);
 };
 
-}    // namespace LAMMPS_NS
+}  // namespace LAMMPS_NS
 
 #endif
 #endif

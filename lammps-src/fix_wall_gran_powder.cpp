@@ -19,7 +19,7 @@ bool is_wallstyle(const std::string &w)
 {
   return w == "xplane" || w == "yplane" || w == "zplane" || w == "zcylinder" || w == "region";
 }
-}    // namespace
+}  // namespace
 
 /* ---------------------------------------------------------------------- */
 
@@ -56,8 +56,7 @@ WallGranPowderArgs::WallGranPowderArgs(LAMMPS *lmp, int narg, char **arg, bool r
   double E = 0.0, nu = 0.0, e = 0.0, Ew = 0.0, nuw = 0.0;
   bool wall_given = false, rigid = false, kt_null = false, found_wallstyle = false;
   auto need = [&](size_t i, size_t n, const char *what) {
-    if (i + n >= words.size())
-      error->all(FLERR, "Illegal fix {} command: {} needs {} value(s)", style, what, n);
+    if (i + n >= words.size()) error->all(FLERR, "Illegal fix {} command: {} needs {} value(s)", style, what, n);
   };
   auto num = [&](size_t i) { return utils::numeric(FLERR, words[i].c_str(), false, lmp); };
 
@@ -70,7 +69,7 @@ WallGranPowderArgs::WallGranPowderArgs(LAMMPS *lmp, int narg, char **arg, bool r
       if (w != "region" && region_wall)
         error->all(FLERR, "Fix {}: the wall style must be 'region ID', not '{}'", style, w);
       if (w == "region") need(i, 1, "region");
-      break;    // the stock parser checks the wall arguments and options
+      break;  // the stock parser checks the wall arguments and options
     }
     if (w == "hooke" || w == "hertz") {
       need(i, 2, w.c_str());
@@ -117,11 +116,10 @@ WallGranPowderArgs::WallGranPowderArgs(LAMMPS *lmp, int narg, char **arg, bool r
         words.erase(words.begin() + i, words.begin() + i + 3);
       }
       wall_given = true;
-      i -= 1;    // the next word now sits at i
+      i -= 1;  // the next word now sits at i
     } else if (w == "tangential") {
       need(i, 1, "tangential");
-      if (words[i + 1].compare(0, 7, "mindlin") == 0 && i + 2 < words.size() && words[i + 2] == "NULL")
-        kt_null = true;
+      if (words[i + 1].compare(0, 7, "mindlin") == 0 && i + 2 < words.size() && words[i + 2] == "NULL") kt_null = true;
       i += 1;
     }
     // anything else is left to the stock parser

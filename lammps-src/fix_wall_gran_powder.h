@@ -26,11 +26,11 @@ namespace LAMMPS_NS {
 struct WallGranPowderCoeffs {
   enum { DAMP_STOCK, DAMP_TSUJI_EXACT, DAMP_TSUJI_ALPHA };
   int damping = DAMP_STOCK;
-  double alpha = 0.0;        // Tsuji alpha (thesis eq. 3.5) for both tsuji forms
-  bool material = false;     // normal model hertz/material, dmt or jkr: kn from E*
-  double kn = 0.0;           // 4/3 E*, E* of particle and wall (the pair style's form)
-  bool kt_from_material = false;    // mindlin tangential with kt NULL
-  double kt = 0.0;           // 8 G*, G* of particle and wall
+  double alpha = 0.0;             // Tsuji alpha (Codina2019 eq. 3.5) for both tsuji forms
+  bool material = false;          // normal model hertz/material, dmt or jkr: kn from E*
+  double kn = 0.0;                // 4/3 E*, E* of particle and wall (the pair style's form)
+  bool kt_from_material = false;  // mindlin tangential with kt NULL
+  double kt = 0.0;                // 8 G*, G* of particle and wall
 
   // copy the coefficients into a stock fix's protected arrays
   void apply_material(double *normal_coeffs, double *tangential_coeffs) const;
@@ -44,7 +44,7 @@ struct WallGranPowderCoeffs {
 class WallGranPowderArgs {
  public:
   WallGranPowderArgs(class LAMMPS *lmp, int narg, char **arg, bool region_wall);
-  int narg() { return (int) argv.size(); }
+  int narg() { return (int)argv.size(); }
   char **arg() { return argv.data(); }
   WallGranPowderCoeffs coeffs;
 
@@ -67,7 +67,7 @@ class FixWallGranPowder : public FixWallGran {
   WallGranPowderCoeffs coeffs;
 };
 
-}    // namespace LAMMPS_NS
+}  // namespace LAMMPS_NS
 
 #endif
 #endif

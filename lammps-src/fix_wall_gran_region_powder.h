@@ -32,7 +32,7 @@ class FixWallGranRegionPowder : public FixWallGranRegion {
   WallGranPowderCoeffs coeffs;
 };
 
-}    // namespace LAMMPS_NS
+}  // namespace LAMMPS_NS
 
 #endif
 #endif

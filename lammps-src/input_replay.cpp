@@ -127,7 +127,7 @@ bool file_size(const std::string &path, long long &size)
 {
   struct stat st;
   if (::stat(path.c_str(), &st) != 0) return false;
-  size = (long long) st.st_size;
+  size = (long long)st.st_size;
   return true;
 }
 
@@ -205,8 +205,8 @@ OutputSizes read_output_sizes(const std::string &file)
   return sizes;
 }
 
-InputReplay::InputReplay(std::string restart_file, OutputSizes outputs)
-  : restart_file_(std::move(restart_file)), outputs_(std::move(outputs))
+InputReplay::InputReplay(std::string restart_file, OutputSizes outputs) :
+    restart_file_(std::move(restart_file)), outputs_(std::move(outputs))
 {
 }
 
@@ -222,9 +222,9 @@ void InputReplay::rewind_outputs() const
     if (!file_size(o.first, now)) continue;
     if (o.second < 0) {
       std::remove(o.first.c_str());
-    } else if (now > o.second && ::truncate(o.first.c_str(), (off_t) o.second) != 0) {
-      throw LammpsSetupError("cannot cut the output file " + o.first + " back to its checkpoint: " +
-                             std::strerror(errno));
+    } else if (now > o.second && ::truncate(o.first.c_str(), (off_t)o.second) != 0) {
+      throw LammpsSetupError("cannot cut the output file " + o.first +
+                             " back to its checkpoint: " + std::strerror(errno));
     }
   }
 }
@@ -232,16 +232,18 @@ void InputReplay::rewind_outputs() const
 std::vector<std::string> InputReplay::before_checkpoint(LAMMPS *lmp, const InputCommand &command)
 {
   const std::string &w = command.name();
-  if (w == "read_restart" || w == "create_box" || (w == "read_data" && std::find(command.words.begin(), command.words.end(), "add") == command.words.end())) {
+  if (w == "read_restart" || w == "create_box" ||
+      (w == "read_data" && std::find(command.words.begin(), command.words.end(), "add") == command.words.end())) {
     if (box_done_) return {};
     box_done_ = true;
     return {"read_restart " + restart_file_};
   }
   // what made or changed the state (the restart holds it), and what would write files
-  if (one_of(w, {"create_atoms", "read_data", "velocity", "set", "displace_atoms", "delete_atoms", "run", "minimize",
-                 "write_restart", "write_data", "write_dump", "write_coeff", "change_box", "reset_timestep",
-                 "create_bonds", "delete_bonds", "rerun", "read_dump", "group", "timestep", "replicate", "balance",
-                 "print", "shell", "reset_atom_ids"}))
+  if (one_of(w, {"create_atoms",  "read_data",      "velocity",      "set",          "displace_atoms", "delete_atoms",
+                 "run",           "minimize",       "write_restart", "write_data",   "write_dump",     "write_coeff",
+                 "change_box",    "reset_timestep", "create_bonds",  "delete_bonds", "rerun",          "read_dump",
+                 "group",         "timestep",       "replicate",     "balance",      "print",          "shell",
+                 "reset_atom_ids"}))
     return {};
   std::vector<std::string> words = split_words(substituted(lmp, command.text));
   if (w == "dump" && words.size() > 1) return {command.text, "dump_modify " + words[1] + " append yes"};
@@ -252,8 +254,9 @@ std::vector<std::string> InputReplay::before_checkpoint(LAMMPS *lmp, const Input
       if (words[3] == "print") {
         words[k] = "append";
       } else {
-        const auto at = std::find_if(outputs_.begin(), outputs_.end(),
-                                     [&](const std::pair<std::string, long long> &o) { return o.first == words[k + 1]; });
+        const auto at = std::find_if(outputs_.begin(), outputs_.end(), [&](const std::pair<std::string, long long> &o) {
+          return o.first == words[k + 1];
+        });
         if (at == outputs_.end() || at->second < 0) continue;  // not written before the checkpoint: starts anew
         Redirect r;
         r.target = words[k + 1];
@@ -280,7 +283,7 @@ void InputReplay::merge_outputs()
     const std::size_t end = fresh.rfind('\n');
     if (end == std::string::npos) continue;
     fresh.resize(end + 1);
-    r.merged += (long long) fresh.size();
+    r.merged += (long long)fresh.size();
     std::size_t from = 0;
     if (!r.header_done) {
       // the header the fix writes when created is already in the file

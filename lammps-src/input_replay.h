@@ -41,7 +41,7 @@ std::vector<std::string> output_files(LAMMPS_NS::LAMMPS *lmp, const std::vector<
 using OutputSizes = std::vector<std::pair<std::string, long long>>;
 OutputSizes output_sizes(const std::vector<std::string> &files);
 void write_output_sizes(const std::string &file, const OutputSizes &sizes);  // throws on a failed write
-OutputSizes read_output_sizes(const std::string &file);                    // empty when missing
+OutputSizes read_output_sizes(const std::string &file);                      // empty when missing
 
 class InputReplay {
  public:

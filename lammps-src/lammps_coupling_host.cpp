@@ -109,8 +109,8 @@ struct LammpsCouplingHost::Impl {
 };
 
 LammpsCouplingHost::LammpsCouplingHost(MPI_Comm comm, const std::string &input_file, const std::string &log_file,
-                                       bool echo, const std::string &restart_file, double restart_time)
-  : impl_(std::make_unique<Impl>())
+                                       bool echo, const std::string &restart_file, double restart_time) :
+    impl_(std::make_unique<Impl>())
 {
   MPI_Comm_rank(comm, &impl_->me);
   {
@@ -158,8 +158,8 @@ LammpsCouplingHost::LammpsCouplingHost(MPI_Comm comm, const std::string &input_f
   }
 
   if (std::strcmp(lmp->update->unit_style, "si") != 0)
-    throw LammpsSetupError(std::string("the LAMMPS input ") + input_file + " uses units " +
-                           lmp->update->unit_style + "; the coupling exchanges SI quantities: use units si");
+    throw LammpsSetupError(std::string("the LAMMPS input ") + input_file + " uses units " + lmp->update->unit_style +
+                           "; the coupling exchanges SI quantities: use units si");
   if (!lmp->domain->box_exist) throw LammpsSetupError("the LAMMPS input " + input_file + " defines no simulation box");
   int nmelt = 0;
   for (int i = 0; i < lmp->modify->nfix; i++)
@@ -176,7 +176,8 @@ LammpsCouplingHost::LammpsCouplingHost(MPI_Comm comm, const std::string &input_f
   if (impl_->not_replayable.empty()) {
     impl_->outputs = output_files(lmp, impl_->commands);
     lmp->input->one("fix meltdem_outputs all powder/checkpoint 0 NULL");
-    impl_->outputs_fix = dynamic_cast<FixPowderCheckpoint *>(lmp->modify->fix[lmp->modify->find_fix("meltdem_outputs")]);
+    impl_->outputs_fix =
+        dynamic_cast<FixPowderCheckpoint *>(lmp->modify->fix[lmp->modify->find_fix("meltdem_outputs")]);
     Impl *impl = impl_.get();
     impl_->outputs_fix->before_outputs = [impl](bigint) {
       if (impl->me != 0) return;
@@ -202,9 +203,15 @@ LammpsCouplingHost::~LammpsCouplingHost()
   }
 }
 
-const std::string &LammpsCouplingHost::resume_limitation() const { return impl_->not_replayable; }
+const std::string &LammpsCouplingHost::resume_limitation() const
+{
+  return impl_->not_replayable;
+}
 
-double LammpsCouplingHost::timestep() const { return impl_->lmp->update->dt; }
+double LammpsCouplingHost::timestep() const
+{
+  return impl_->lmp->update->dt;
+}
 
 void LammpsCouplingHost::set_timestep(double dt)
 {
@@ -219,9 +226,15 @@ double LammpsCouplingHost::time() const
   return u->atime + double(u->ntimestep - u->atimestep) * u->dt;
 }
 
-std::int64_t LammpsCouplingHost::step() const { return std::int64_t(impl_->lmp->update->ntimestep); }
+std::int64_t LammpsCouplingHost::step() const
+{
+  return std::int64_t(impl_->lmp->update->ntimestep);
+}
 
-std::int64_t LammpsCouplingHost::particles() const { return std::int64_t(impl_->lmp->atom->natoms); }
+std::int64_t LammpsCouplingHost::particles() const
+{
+  return std::int64_t(impl_->lmp->atom->natoms);
+}
 
 void LammpsCouplingHost::box(double lo[3], double hi[3], int periodic[3]) const
 {
@@ -235,9 +248,15 @@ double LammpsCouplingHost::gravity(double g[3]) const
   return std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
 }
 
-const mc::MeltMaterial &LammpsCouplingHost::material() const { return impl_->melt->material(); }
+const mc::MeltMaterial &LammpsCouplingHost::material() const
+{
+  return impl_->melt->material();
+}
 
-std::string LammpsCouplingHost::melt_fix_id() const { return impl_->melt->id; }
+std::string LammpsCouplingHost::melt_fix_id() const
+{
+  return impl_->melt->id;
+}
 
 void LammpsCouplingHost::insertion_store(coupling::Amounts &drawn, coupling::Amounts &pending) const
 {
@@ -257,7 +276,10 @@ void LammpsCouplingHost::insertion_store(coupling::Amounts &drawn, coupling::Amo
   }
 }
 
-bool LammpsCouplingHost::solid_metal_wall() const { return impl_->melt->solid_metal_wall(); }
+bool LammpsCouplingHost::solid_metal_wall() const
+{
+  return impl_->melt->solid_metal_wall();
+}
 
 void LammpsCouplingHost::local_particles(std::vector<mc::ExchangeRecord> &out) const
 {

@@ -1,5 +1,5 @@
 #pragma once
-// LAMMPS inside another code's MPI job (issue 5): meltdemFoam owns the time loop and
+// LAMMPS inside another code's MPI job: meltdemFoam owns the time loop and
 // drives a LAMMPS instance built from the case's input script through this class. The
 // header has no LAMMPS headers, so OpenFOAM translation units can include it.
 //
@@ -51,9 +51,9 @@ class LammpsCouplingHost {
   // replayed on a restart (jump, label, next, clear)
   const std::string &resume_limitation() const;
 
-  double timestep() const;  // current DEM step [s]
+  double timestep() const;       // current DEM step [s]
   void set_timestep(double dt);  // as the input command timestep (LAMMPS books the time so far)
-  double time() const;      // simulated time of LAMMPS [s]
+  double time() const;           // simulated time of LAMMPS [s]
   std::int64_t step() const;
   std::int64_t particles() const;  // global number of atoms
   void box(double lo[3], double hi[3], int periodic[3]) const;

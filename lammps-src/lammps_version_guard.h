@@ -3,7 +3,9 @@
 // Debian's liblammps: a different library version would mean a different class layout.
 #include <string>
 
-namespace LAMMPS_NS { class LAMMPS; }
+namespace LAMMPS_NS {
+class LAMMPS;
+}
 
 namespace meltdem {
 

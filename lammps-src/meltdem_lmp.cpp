@@ -45,8 +45,9 @@ int main(int argc, char **argv)
       char *end = nullptr;
       if (i + 2 < argc) every = std::strtoll(argv[i + 2], &end, 10);
       if (i + 2 >= argc || !end || *end != '\0' || every < 1) {
-        if (me == 0) fprintf(stderr, "ERROR: meltdem-lmp -checkpoint DIR N: N, the steps between checkpoints, "
-                                     "must be a positive integer\n");
+        if (me == 0)
+          fprintf(stderr, "ERROR: meltdem-lmp -checkpoint DIR N: N, the steps between checkpoints, "
+                          "must be a positive integer\n");
         MPI_Finalize();
         return 1;
       }

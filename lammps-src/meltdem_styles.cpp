@@ -21,12 +21,18 @@ using namespace LAMMPS_NS;
 namespace meltdem {
 
 namespace {
-template <typename T> Fix *fix_creator(LAMMPS *lmp, int narg, char **arg) { return new T(lmp, narg, arg); }
+template <typename T> Fix *fix_creator(LAMMPS *lmp, int narg, char **arg)
+{
+  return new T(lmp, narg, arg);
+}
 template <typename T> Compute *compute_creator(LAMMPS *lmp, int narg, char **arg)
 {
   return new T(lmp, narg, arg);
 }
-template <typename T> Pair *pair_creator(LAMMPS *lmp) { return new T(lmp); }
+template <typename T> Pair *pair_creator(LAMMPS *lmp)
+{
+  return new T(lmp);
+}
 
 // set once the driver has checked the library's version: before that, the instance's
 // layout may not be the one these styles were compiled for
@@ -36,19 +42,18 @@ bool registration_armed = false;
 template <typename Visit> void for_each_style(Visit &&visit)
 {
 #define FIX_CLASS
-#define FixStyle(key, Class) \
-  visit("fix", #key, [](LAMMPS *l) { (*l->modify->fix_map)[#key] = &fix_creator<Class>; });
+#define FixStyle(key, Class) visit("fix", #key, [](LAMMPS *l) { (*l->modify->fix_map)[#key] = &fix_creator<Class>; });
 #include "meltdem_style_fix.h"
 #undef FixStyle
 #undef FIX_CLASS
 #define COMPUTE_CLASS
-#define ComputeStyle(key, Class) \
+#define ComputeStyle(key, Class)                                                                                       \
   visit("compute", #key, [](LAMMPS *l) { (*l->modify->compute_map)[#key] = &compute_creator<Class>; });
 #include "meltdem_style_compute.h"
 #undef ComputeStyle
 #undef COMPUTE_CLASS
 #define PAIR_CLASS
-#define PairStyle(key, Class) \
+#define PairStyle(key, Class)                                                                                          \
   visit("pair", #key, [](LAMMPS *l) { (*l->force->pair_map)[#key] = &pair_creator<Class>; });
 #include "meltdem_style_pair.h"
 #undef PairStyle
@@ -80,8 +85,7 @@ std::vector<std::string> registered_lammps_styles()
 void LAMMPS_NS::LAMMPS::post_create()
 {
   using PostCreate = void (*)(LAMMPS *);
-  static const auto original =
-      reinterpret_cast<PostCreate>(dlsym(RTLD_NEXT, "_ZN9LAMMPS_NS6LAMMPS11post_createEv"));
+  static const auto original = reinterpret_cast<PostCreate>(dlsym(RTLD_NEXT, "_ZN9LAMMPS_NS6LAMMPS11post_createEv"));
   if (!original) {
     fprintf(stderr, "ERROR: meltdem: LAMMPS::post_create not found in liblammps\n");
     abort();

@@ -5,7 +5,9 @@
 #include <string>
 #include <vector>
 
-namespace LAMMPS_NS { class LAMMPS; }
+namespace LAMMPS_NS {
+class LAMMPS;
+}
 
 namespace meltdem {
 

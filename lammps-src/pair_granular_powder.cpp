@@ -25,15 +25,15 @@ struct NormalCoeffsTag {
   friend type get(NormalCoeffsTag);
 };
 template struct Rob<NormalCoeffsTag, &PairGranular::normal_coeffs>;
-}    // namespace
+}  // namespace
 
 void PairGranularPowder::coeff(int narg, char **arg)
 {
   // hertz/material E e nu ... damping tsuji|tsuji/alpha: find e and the damping form,
   // let the stock parser do the rest, then overwrite alpha with the exact value.
-  int mode = 0;    // 0 none, 1 tsuji (exact e), 2 tsuji/alpha
+  int mode = 0;  // 0 none, 1 tsuji (exact e), 2 tsuji/alpha
   double value = 0.0;
-  bool hertz = false;    // e depends on alpha alone only for a Hertz contact
+  bool hertz = false;  // e depends on alpha alone only for a Hertz contact
   std::vector<std::string> copy(arg, arg + narg);
   for (int i = 2; i < narg; i++) {
     if ((copy[i] == "hertz/material" && i + 3 < narg) || (copy[i] == "hertz" && i + 2 < narg)) {
@@ -50,7 +50,8 @@ void PairGranularPowder::coeff(int narg, char **arg)
     }
     if (copy[i] == "hooke" || copy[i] == "dmt" || copy[i] == "jkr") hertz = false;
     if (copy[i] == "damping" && i + 1 < narg) {
-      if (copy[i + 1] == "tsuji") mode = 1;
+      if (copy[i + 1] == "tsuji")
+        mode = 1;
       else if (copy[i + 1] == "tsuji/alpha") {
         if (i + 2 >= narg) error->all(FLERR, "Illegal pair_coeff command: damping tsuji/alpha needs a value");
         mode = 2;
@@ -63,13 +64,13 @@ void PairGranularPowder::coeff(int narg, char **arg)
   }
   if (mode == 1 && !hertz)
     error->all(FLERR, "Illegal pair_coeff command: damping tsuji needs normal model hertz/material or hertz "
-               "(use tsuji/alpha otherwise)");
+                      "(use tsuji/alpha otherwise)");
   if (mode == 1 && (value <= 0.0 || value > 1.0))
     error->all(FLERR, "Illegal pair_coeff command: restitution e must lie in (0,1] for damping tsuji");
   // with tsuji/alpha the stock parser still needs a valid e in hertz/material: use 0.5
   std::vector<char *> argv;
   for (auto &s : copy) argv.push_back(const_cast<char *>(s.c_str()));
-  PairGranular::coeff((int) argv.size(), argv.data());
+  PairGranular::coeff((int)argv.size(), argv.data());
   if (mode == 0) return;
   const double alpha = (mode == 1) ? meltdem::coupling::alpha_for_restitution(value) : value;
   int ilo, ihi, jlo, jhi;

@@ -15,6 +15,6 @@ class PairGranularPowder : public PairGranular {
   void init_style() override;
   double init_one(int, int) override;
 };
-}    // namespace LAMMPS_NS
+}  // namespace LAMMPS_NS
 #endif
 #endif

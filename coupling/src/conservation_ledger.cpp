@@ -10,8 +10,8 @@ namespace meltdem::coupling {
 
 namespace {
 
-const char *const kCategoryNames[kCategories] = {"particles", "continuum", "pending", "exchange",
-                                                 "boundary_in", "boundary_out", "lost", "feed",
+const char *const kCategoryNames[kCategories] = {"particles",        "continuum",      "pending", "exchange",
+                                                 "boundary_in",      "boundary_out",   "lost",    "feed",
                                                  "continuum_source", "particle_source"};
 const char *const kComponentNames[kComponents] = {"mass", "enthalpy", "mom_x", "mom_y", "mom_z"};
 
@@ -45,7 +45,7 @@ ExactSum system_sources(const ExactSum (&g)[kCategories][kComponents], int q)
   return s;
 }
 
-// sources of the continuum (thesis: phase change + boundaries, plus external sources)
+// sources of the continuum (Codina2019: phase change + boundaries, plus external sources)
 ExactSum continuum_sources(const ExactSum (&g)[kCategories][kComponents], int q)
 {
   ExactSum s;
@@ -58,8 +58,14 @@ ExactSum continuum_sources(const ExactSum (&g)[kCategories][kComponents], int q)
 
 }  // namespace
 
-const char *category_name(Category c) { return kCategoryNames[c]; }
-const char *component_name(Component c) { return kComponentNames[c]; }
+const char *category_name(Category c)
+{
+  return kCategoryNames[c];
+}
+const char *component_name(Component c)
+{
+  return kComponentNames[c];
+}
 
 ConservationLedger::ConservationLedger(MPI_Comm comm) : comm_(comm)
 {
@@ -90,8 +96,8 @@ void ConservationLedger::book(Category c, const Amounts &a)
   if (c < 0 || c >= kCategories) throw std::invalid_argument("ConservationLedger: unknown category");
   for (int q = 0; q < kComponents; ++q) {
     if (!std::isfinite(a[q]))
-      throw std::invalid_argument(std::string("ConservationLedger: non-finite ") + kComponentNames[q] +
-                                  " booked in " + kCategoryNames[c]);
+      throw std::invalid_argument(std::string("ConservationLedger: non-finite ") + kComponentNames[q] + " booked in " +
+                                  kCategoryNames[c]);
     local_[c][q].add(a[q]);
   }
 }
@@ -256,8 +262,8 @@ std::string ConservationLedger::csv_header()
     const std::string n = kComponentNames[q];
     for (int c = 0; c < kCategories; ++c) o << ',' << n << '_' << kCategoryNames[c];
     o << ',' << n << "_total," << n << "_continuum_error," << n << "_system_error," << n
-      << "_cumulative_continuum_error," << n << "_cumulative_system_error," << n << "_cumulative_boundary_in,"
-      << n << "_cumulative_boundary_out," << n << "_cumulative_lost";
+      << "_cumulative_continuum_error," << n << "_cumulative_system_error," << n << "_cumulative_boundary_in," << n
+      << "_cumulative_boundary_out," << n << "_cumulative_lost";
   }
   o << '\n';
   return o.str();
@@ -266,13 +272,12 @@ std::string ConservationLedger::csv_header()
 std::string ConservationLedger::csv_row(const LedgerStep &s)
 {
   std::ostringstream o;
-  o << std::setprecision(17) << s.step << ',' << s.time << ',' << s.dt << ',' << s.particles << ','
-    << s.lost_particles;
+  o << std::setprecision(17) << s.step << ',' << s.time << ',' << s.dt << ',' << s.particles << ',' << s.lost_particles;
   for (int q = 0; q < kComponents; ++q) {
     for (int c = 0; c < kCategories; ++c) o << ',' << s.booked[c][q];
     o << ',' << s.system_total[q] << ',' << s.continuum_error[q] << ',' << s.system_error[q] << ','
-      << s.cumulative_continuum_error[q] << ',' << s.cumulative_system_error[q] << ','
-      << s.cumulative_boundary_in[q] << ',' << s.cumulative_boundary_out[q] << ',' << s.cumulative_lost[q];
+      << s.cumulative_continuum_error[q] << ',' << s.cumulative_system_error[q] << ',' << s.cumulative_boundary_in[q]
+      << ',' << s.cumulative_boundary_out[q] << ',' << s.cumulative_lost[q];
   }
   o << '\n';
   return o.str();

@@ -1,5 +1,5 @@
 // ConservationLedger checkpoints: a coupled run that is stopped and resumed from its last
-// write time books the steps after it exactly as an uninterrupted run would (issue 7).
+// write time books the steps after it exactly as an uninterrupted run would.
 // Doubles go as hexadecimal floats, so nothing is rounded on the way.
 #include "meltdem/coupling/conservation_ledger.h"
 
@@ -87,9 +87,9 @@ void ConservationLedger::save_state(std::ostream &os) const
   put(os, s.dt);
   os << '\n';
   for (const auto &b : s.booked) put(os, b);
-  for (const Amounts *a : {&s.system_total, &s.continuum_error, &s.system_error, &s.cumulative_continuum_error,
-                           &s.cumulative_system_error, &s.cumulative_boundary_out, &s.cumulative_lost,
-                           &s.cumulative_boundary_in})
+  for (const Amounts *a :
+       {&s.system_total, &s.continuum_error, &s.system_error, &s.cumulative_continuum_error, &s.cumulative_system_error,
+        &s.cumulative_boundary_out, &s.cumulative_lost, &s.cumulative_boundary_in})
     put(os, *a);
   put(os, worst_continuum_error());
   put(os, worst_system_error());
@@ -119,9 +119,9 @@ void ConservationLedger::load_state(std::istream &is)
   s.time = r.number();
   s.dt = r.number();
   for (auto &b : s.booked) r.amounts(b);
-  for (Amounts *a : {&s.system_total, &s.continuum_error, &s.system_error, &s.cumulative_continuum_error,
-                     &s.cumulative_system_error, &s.cumulative_boundary_out, &s.cumulative_lost,
-                     &s.cumulative_boundary_in})
+  for (Amounts *a :
+       {&s.system_total, &s.continuum_error, &s.system_error, &s.cumulative_continuum_error, &s.cumulative_system_error,
+        &s.cumulative_boundary_out, &s.cumulative_lost, &s.cumulative_boundary_in})
     r.amounts(*a);
   r.amounts(loaded_worst_continuum_);
   r.amounts(loaded_worst_system_);

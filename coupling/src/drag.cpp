@@ -32,7 +32,10 @@ double drag_coefficient(DragModel model, double Re)
   return cd_re(model, Re) / Re;
 }
 
-double drag_coefficient_thesis(double Re) { return drag_coefficient(DragModel::Thesis, Re); }
+double drag_coefficient_thesis(double Re)
+{
+  return drag_coefficient(DragModel::Thesis, Re);
+}
 
 double drag_coefficient_schiller_naumann(double Re)
 {

@@ -35,8 +35,7 @@ double hertz_contact_time_equal_spheres(double R, double rho, double E_eff, doub
 
 double dem_timestep(double t_contact, double collision_resolution_steps)
 {
-  if (!(collision_resolution_steps > 0.0))
-    throw std::invalid_argument("collision resolution steps must be > 0");
+  if (!(collision_resolution_steps > 0.0)) throw std::invalid_argument("collision resolution steps must be > 0");
   return t_contact / collision_resolution_steps;
 }
 

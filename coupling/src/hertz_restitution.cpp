@@ -24,7 +24,7 @@ double restitution_for_alpha(double alpha)
 {
   if (!(alpha >= 0.0) || !std::isfinite(alpha))
     throw std::invalid_argument("restitution_for_alpha: alpha must be finite and >= 0");
-  const double h = 2.0e-4;    // undamped contact lasts ~3.2 in tau
+  const double h = 2.0e-4;  // undamped contact lasts ~3.2 in tau
   State s{0.0, 1.0};
   for (long n = 0; n < 10000000L; ++n) {
     const State k1 = rhs(s, alpha);
@@ -38,18 +38,22 @@ double restitution_for_alpha(double alpha)
       double lo = 0.0, hi = 1.0;
       auto xh = [&](double t) {
         const double t2 = t * t, t3 = t2 * t;
-        return (2 * t3 - 3 * t2 + 1) * s.x + (t3 - 2 * t2 + t) * h * s.v +
-            (-2 * t3 + 3 * t2) * s1.x + (t3 - t2) * h * s1.v;
+        return (2 * t3 - 3 * t2 + 1) * s.x + (t3 - 2 * t2 + t) * h * s.v + (-2 * t3 + 3 * t2) * s1.x +
+               (t3 - t2) * h * s1.v;
       };
       for (int it = 0; it < 60; ++it) {
         const double mid = 0.5 * (lo + hi);
-        if (xh(mid) > 0.0) lo = mid; else hi = mid;
+        if (xh(mid) > 0.0)
+          lo = mid;
+        else
+          hi = mid;
       }
       const double t = 0.5 * (lo + hi);
       // velocity by Hermite derivative
       const double t2 = t * t;
-      const double v = ((6 * t2 - 6 * t) * s.x + (3 * t2 - 4 * t + 1) * h * s.v +
-                        (-6 * t2 + 6 * t) * s1.x + (3 * t2 - 2 * t) * h * s1.v) / h;
+      const double v = ((6 * t2 - 6 * t) * s.x + (3 * t2 - 4 * t + 1) * h * s.v + (-6 * t2 + 6 * t) * s1.x +
+                        (3 * t2 - 2 * t) * h * s1.v) /
+                       h;
       return -v;
     }
     s = s1;
@@ -60,8 +64,7 @@ double restitution_for_alpha(double alpha)
 
 double alpha_for_restitution(double e)
 {
-  if (!(e > 0.0 && e <= 1.0))
-    throw std::invalid_argument("alpha_for_restitution: e must lie in (0, 1]");
+  if (!(e > 0.0 && e <= 1.0)) throw std::invalid_argument("alpha_for_restitution: e must lie in (0, 1]");
   if (e == 1.0) return 0.0;
   double lo = 0.0, hi = 1.0;
   while (restitution_for_alpha(hi) > e) {
@@ -71,7 +74,10 @@ double alpha_for_restitution(double e)
   // e(alpha) decreases monotonically
   for (int it = 0; it < 60 && hi - lo > 1e-12 * hi; ++it) {
     const double mid = 0.5 * (lo + hi);
-    if (restitution_for_alpha(mid) > e) lo = mid; else hi = mid;
+    if (restitution_for_alpha(mid) > e)
+      lo = mid;
+    else
+      hi = mid;
   }
   return 0.5 * (lo + hi);
 }

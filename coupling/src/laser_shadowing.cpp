@@ -159,7 +159,8 @@ ShadowResult shade_particles(const GaussianBeam &beam, const std::vector<BeamPar
         rmin = std::min(rmin, p.radius);
     }
     if (std::isfinite(rmin))
-      half_cells = std::max(half_cells, std::min(max_half, std::ceil(half * options.cells_per_particle_radius / rmin - 1e-9)));
+      half_cells =
+          std::max(half_cells, std::min(max_half, std::ceil(half * options.cells_per_particle_radius / rmin - 1e-9)));
   }
   g.n = 2 * static_cast<int>(half_cells);
   const int n = g.n, m = n / 2;
@@ -247,8 +248,8 @@ ShadowResult shade_particles(MPI_Comm comm, const GaussianBeam &beam, const std:
   std::string local_error;
   for (std::size_t k = 0; k < local.size() && local_error.empty(); ++k) {
     if (!(local[k].radius > 0.0) || !std::isfinite(local[k].radius))
-      local_error = "local particle " + std::to_string(k) + " radius = " + str(local[k].radius) +
-                    " m must be finite and > 0";
+      local_error =
+          "local particle " + std::to_string(k) + " radius = " + str(local[k].radius) + " m must be finite and > 0";
     else if (!local[k].x.allFinite())
       local_error = "local particle " + std::to_string(k) + " centre " + str(local[k].x) + " is not finite";
   }

@@ -14,7 +14,10 @@ namespace meltdem::coupling {
 
 namespace {
 
-double particle_volume(double radius) { return 4.0 / 3.0 * M_PI * radius * radius * radius; }
+double particle_volume(double radius)
+{
+  return 4.0 / 3.0 * M_PI * radius * radius * radius;
+}
 
 // Gather `per` doubles per item from every rank, in rank order.
 void allgather_doubles(const std::vector<double> &local, int per, MPI_Comm comm, std::vector<double> &all,
@@ -65,8 +68,8 @@ bool shares_face(const Eigen::Vector3d &lo, const Eigen::Vector3d &hi, const Eig
 
 }  // namespace
 
-ParallelExchange::ParallelExchange(const DistributionMesh &local_mesh, DistributionModel model, MPI_Comm comm)
-  : mesh_(local_mesh), model_(model), comm_(comm)
+ParallelExchange::ParallelExchange(const DistributionMesh &local_mesh, DistributionModel model, MPI_Comm comm) :
+    mesh_(local_mesh), model_(model), comm_(comm)
 {
   MPI_Comm_rank(comm_, &rank_);
   MPI_Comm_size(comm_, &size_);
@@ -88,7 +91,8 @@ void ParallelExchange::locate(const std::vector<ParticleShape> &local)
   offset_ = std::size_t(displs_[rank_]);
   all_.resize(n);
   for (std::size_t g = 0; g < n; ++g)
-    all_[g] = {Eigen::Vector3d(all[5 * g], all[5 * g + 1], all[5 * g + 2]), all[5 * g + 3], std::int64_t(all[5 * g + 4])};
+    all_[g] = {Eigen::Vector3d(all[5 * g], all[5 * g + 1], all[5 * g + 2]), all[5 * g + 3],
+               std::int64_t(all[5 * g + 4])};
 
   // the cell holding each centre: the lowest rank that finds it owns it
   std::vector<long> home(n, -1);
@@ -141,7 +145,7 @@ void ParallelExchange::locate(const std::vector<ParticleShape> &local)
           mesh_.cell_bounds(cell, lo, hi);
           int axis;
           double plane, outward;
-          // thesis fig. 3.9: reached when c + r n lies beyond the shared face
+          // Codina2019 fig. 3.9: reached when c + r n lies beyond the shared face
           if (shares_face(lo, hi, hlo, hhi, axis, plane, outward) && (c[axis] - plane) * outward + r > 0.0)
             cells_.push_back(cell), weights_.push_back(mesh_.cell_volume(cell));
         }
@@ -221,9 +225,8 @@ void ParallelExchange::deposit(const std::vector<Amounts> &local_amounts, std::v
 }
 
 void ParallelExchange::deposit_taken(const std::vector<std::int64_t> &ids, const std::vector<double> &heat,
-                                     const std::vector<Eigen::Vector3d> &impulse,
-                                     const std::vector<double> &particle_T, const CellFluidFields &f,
-                                     std::vector<Amounts> &cell_amounts) const
+                                     const std::vector<Eigen::Vector3d> &impulse, const std::vector<double> &particle_T,
+                                     const CellFluidFields &f, std::vector<Amounts> &cell_amounts) const
 {
   const std::size_t nmine = ids.size();
   if (heat.size() != nmine || impulse.size() != nmine || particle_T.size() != nmine)
@@ -254,7 +257,7 @@ void ParallelExchange::deposit_taken(const std::vector<std::int64_t> &ids, const
   // of it for a particle alone in the cell) times the cell's temperature difference to the
   // particle, in the direction g took heat
   std::vector<double> held(cells_.size(), 0.0);  // per weight: the particle volume in its cell
-  std::vector<double> claimed;                    // per cell: that volume summed over particles
+  std::vector<double> claimed;                   // per cell: that volume summed over particles
   std::vector<double> available(cells_.size(), 0.0);
   if (f.volume) {
     claimed.assign(cell_amounts.size(), 0.0);
@@ -293,8 +296,8 @@ void ParallelExchange::deposit_taken(const std::vector<std::int64_t> &ids, const
       // each cell by the heat it has above (below) the particle's temperature, so each moves
       // the same fraction of the way towards it and none passes it; what is beyond all cells'
       // room (the fluid step is too long: the bound guard stops the run) by capacity
-      const double given = Q <= room ? (room > 0.0 ? Q * available[k] / room : 0.0)
-                                     : available[k] + (Q - room) * by_capacity;
+      const double given =
+          Q <= room ? (room > 0.0 ? Q * available[k] / room : 0.0) : available[k] + (Q - room) * by_capacity;
       const double mass_share = mass > 0.0 ? weights_[k] * f.rho[c] / mass : weights_[k];
       Amounts &cell = cell_amounts.at(std::size_t(c));
       cell[kEnthalpy] -= std::copysign(given, a[0]);
@@ -306,7 +309,8 @@ void ParallelExchange::deposit_taken(const std::vector<std::int64_t> &ids, const
 void ParallelExchange::local_weights(std::int64_t g, std::vector<CellWeight> &out) const
 {
   out.clear();
-  for (std::size_t k = start_[std::size_t(g)]; k < start_[std::size_t(g) + 1]; ++k) out.push_back({cells_[k], weights_[k]});
+  for (std::size_t k = start_[std::size_t(g)]; k < start_[std::size_t(g) + 1]; ++k)
+    out.push_back({cells_[k], weights_[k]});
 }
 
 }  // namespace meltdem::coupling

@@ -1,4 +1,4 @@
-// Particle -> cell distribution models (thesis 3.2.3, eq. 3.7) and the sphere-box overlap.
+// Particle -> cell distribution models (Codina2019 §3.2.3, eq. 3.7) and the sphere-box overlap.
 #include "meltdem/coupling/particle_distribution.h"
 
 #include "meltdem/coupling/exact_sum.h"
@@ -46,8 +46,7 @@ const GaussLegendre &gauss()
   return g;
 }
 
-template <class F>
-double gauss_rule(const F &f, double u0, double u1)
+template <class F> double gauss_rule(const F &f, double u0, double u1)
 {
   const auto &g = gauss();
   double sum = 0.0;
@@ -55,8 +54,7 @@ double gauss_rule(const F &f, double u0, double u1)
   return sum * (u1 - u0);
 }
 
-template <class F>
-double adaptive_gauss(const F &f, double u0, double u1, double whole, double tol, int depth)
+template <class F> double adaptive_gauss(const F &f, double u0, double u1, double whole, double tol, int depth)
 {
   const double um = 0.5 * (u0 + u1);
   const double left = gauss_rule(f, u0, um), right = gauss_rule(f, um, u1);
@@ -79,8 +77,8 @@ double circle_primitive(double R, double y)
 double disk_rectangle_area(double R, double y0, double y1, double z0, double z1)
 {
   if (!(R > 0.0) || y0 >= R || z0 >= R || y1 <= -R || z1 <= -R) return 0.0;
-  const double a = disk_quadrant_area(R, y1, z1) - disk_quadrant_area(R, y0, z1) -
-                   disk_quadrant_area(R, y1, z0) + disk_quadrant_area(R, y0, z0);
+  const double a = disk_quadrant_area(R, y1, z1) - disk_quadrant_area(R, y0, z1) - disk_quadrant_area(R, y1, z0) +
+                   disk_quadrant_area(R, y0, z0);
   return std::max(0.0, a);
 }
 
@@ -136,7 +134,7 @@ double sphere_box_overlap(const Eigen::Vector3d &c, double r, const Eigen::Vecto
   int nc = 0;
   cuts[nc++] = xa;
   cuts[nc++] = xb;
-  const double d2[8] = {y0 * y0, y1 * y1, z0 * z0, z1 * z1,
+  const double d2[8] = {y0 * y0,           y1 * y1,           z0 * z0,           z1 * z1,
                         y0 * y0 + z0 * z0, y0 * y0 + z1 * z1, y1 * y1 + z0 * z0, y1 * y1 + z1 * z1};
   for (double d : d2) {
     if (d >= r * r) continue;
@@ -198,9 +196,12 @@ DistributionModel parse_distribution_model(const std::string &name)
 const char *to_string(DistributionModel model)
 {
   switch (model) {
-    case DistributionModel::Centre: return "centre";
-    case DistributionModel::Neighbours: return "neighbours";
-    case DistributionModel::Overlap: return "overlap";
+    case DistributionModel::Centre:
+      return "centre";
+    case DistributionModel::Neighbours:
+      return "neighbours";
+    case DistributionModel::Overlap:
+      return "overlap";
   }
   return "?";
 }
@@ -219,8 +220,8 @@ void append_overlap_volumes(const DistributionMesh &mesh, const Eigen::Vector3d 
   }
 }
 
-bool distribute_particle(const DistributionMesh &mesh, DistributionModel model, const Eigen::Vector3d &c,
-                         double r, std::vector<CellWeight> &out)
+bool distribute_particle(const DistributionMesh &mesh, DistributionModel model, const Eigen::Vector3d &c, double r,
+                         std::vector<CellWeight> &out)
 {
   check_particle(c, r);
   out.clear();
@@ -233,7 +234,7 @@ bool distribute_particle(const DistributionMesh &mesh, DistributionModel model, 
       return true;
 
     case DistributionModel::Neighbours: {
-      // thesis fig. 3.9: the neighbour across face f is occupied when the particle's
+      // Codina2019 fig. 3.9: the neighbour across face f is occupied when the particle's
       // farthest point along the outward normal n, c + r n, lies beyond the face:
       // (c + r n - x_f) . n > 0. Only direct neighbours of the centre cell (no recursion).
       thread_local std::vector<DistributionMesh::Face> faces;
@@ -257,8 +258,8 @@ bool distribute_particle(const DistributionMesh &mesh, DistributionModel model, 
 }
 
 // ---------------------------------------------------------------------------------------
-CartesianGridMesh::CartesianGridMesh(std::vector<double> x, std::vector<double> y, std::vector<double> z)
-  : nodes_{std::move(x), std::move(y), std::move(z)}
+CartesianGridMesh::CartesianGridMesh(std::vector<double> x, std::vector<double> y, std::vector<double> z) :
+    nodes_{std::move(x), std::move(y), std::move(z)}
 {
   for (int d = 0; d < 3; ++d) {
     if (nodes_[d].size() < 2) throw std::invalid_argument("CartesianGridMesh: every axis needs >= 2 nodes");

@@ -11,8 +11,8 @@ double slip_reynolds(const FluidState &fluid, const double v[3], double d)
   return particle_reynolds(fluid.rho, std::sqrt(s0 * s0 + s1 * s1 + s2 * s2), d, fluid.mu);
 }
 
-ParticleForces drag_and_buoyancy(DragModel model, const FluidState &fluid, const double v[3],
-                                 double d, const double g[3])
+ParticleForces drag_and_buoyancy(DragModel model, const FluidState &fluid, const double v[3], double d,
+                                 const double g[3])
 {
   ParticleForces f;
   f.Re = slip_reynolds(fluid, v, d);

@@ -24,8 +24,7 @@ double particle_temperature(const MeltMaterial &mat, double h)
 
 double specific_enthalpy(const MeltMaterial &mat, double T)
 {
-  if (!(T >= 0.0) || !(T <= mat.Tmelt))
-    throw std::invalid_argument("particle temperature must lie in [0, Tmelt]");
+  if (!(T >= 0.0) || !(T <= mat.Tmelt)) throw std::invalid_argument("particle temperature must lie in [0, Tmelt]");
   return mat.cp * T;
 }
 
@@ -34,8 +33,8 @@ double ranz_marshall_k_nu(const FluidState &fluid, double Re)
   return fluid.k * ranz_marshall_nusselt(Re, prandtl_number(fluid.cp, fluid.mu, fluid.k));
 }
 
-MeltStepResult heat_melt_step(const MeltMaterial &mat, double h, double m, double d, double k_nu,
-                              double T_fluid, double dt)
+MeltStepResult heat_melt_step(const MeltMaterial &mat, double h, double m, double d, double k_nu, double T_fluid,
+                              double dt)
 {
   check_material(mat);
   if (!(m > 0.0) || !(d > 0.0)) throw std::invalid_argument("heat_melt_step needs m > 0, d > 0");

@@ -15,7 +15,10 @@ std::uint64_t splitmix64(std::uint64_t &x)
   z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
   return z ^ (z >> 31);
 }
-inline std::uint64_t rotl(std::uint64_t x, int k) { return (x << k) | (x >> (64 - k)); }
+inline std::uint64_t rotl(std::uint64_t x, int k)
+{
+  return (x << k) | (x >> (64 - k));
+}
 
 void require(bool ok, const std::string &what)
 {
@@ -168,12 +171,16 @@ SizeDistribution SizeDistribution::by_volume() const
 double SizeDistribution::base_cdf(double d) const
 {
   switch (kind_) {
-    case SizeDistKind::Uniform: return d;
-    case SizeDistKind::Normal: return 0.5 * std::erfc(-(d - p1_) / (p2_ * std::sqrt(2.0)));
+    case SizeDistKind::Uniform:
+      return d;
+    case SizeDistKind::Normal:
+      return 0.5 * std::erfc(-(d - p1_) / (p2_ * std::sqrt(2.0)));
     case SizeDistKind::Lognormal:
       return 0.5 * std::erfc(-(std::log(d) - std::log(p1_)) / (p2_ * std::sqrt(2.0)));
-    case SizeDistKind::RosinRammler: return -std::expm1(-std::pow(d / p1_, p2_));
-    default: return 0.0;
+    case SizeDistKind::RosinRammler:
+      return -std::expm1(-std::pow(d / p1_, p2_));
+    default:
+      return 0.0;
   }
 }
 
@@ -181,7 +188,8 @@ double SizeDistribution::base_pdf(double d) const
 {
   constexpr double inv_sqrt_2pi = 0.3989422804014327;
   switch (kind_) {
-    case SizeDistKind::Uniform: return 1.0;
+    case SizeDistKind::Uniform:
+      return 1.0;
     case SizeDistKind::Normal: {
       const double z = (d - p1_) / p2_;
       return inv_sqrt_2pi / p2_ * std::exp(-0.5 * z * z);
@@ -194,7 +202,8 @@ double SizeDistribution::base_pdf(double d) const
       const double x = std::pow(d / p1_, p2_);
       return p2_ / d * x * std::exp(-x);
     }
-    default: return 0.0;
+    default:
+      return 0.0;
   }
 }
 
@@ -273,8 +282,10 @@ double SizeDistribution::sample(double u) const
   double a = lo_, b = hi_;
   for (int it = 0; it < 200 && b - a > 1e-15 * hi_; ++it) {
     const double m = 0.5 * (a + b);
-    if (cdf(m) < u) a = m;
-    else b = m;
+    if (cdf(m) < u)
+      a = m;
+    else
+      b = m;
   }
   return 0.5 * (a + b);
 }
@@ -321,7 +332,8 @@ std::vector<std::pair<double, double>> parse_size_table(std::istream &in)
     }
     if (!(ls >> w)) throw std::invalid_argument("table line " + std::to_string(lineno) + ": missing weight");
     std::string extra;
-    if (ls >> extra) throw std::invalid_argument("table line " + std::to_string(lineno) + ": extra text '" + extra + "'");
+    if (ls >> extra)
+      throw std::invalid_argument("table line " + std::to_string(lineno) + ": extra text '" + extra + "'");
     if (!(d > 0.0)) throw std::invalid_argument("table line " + std::to_string(lineno) + ": diameter must be > 0");
     if (!(w >= 0.0)) throw std::invalid_argument("table line " + std::to_string(lineno) + ": weight must be >= 0");
     rows.emplace_back(d, w);

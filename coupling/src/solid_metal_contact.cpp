@@ -24,8 +24,10 @@ SolidSurface nearest_solid_surface(const Eigen::Vector3d &c, const std::vector<E
         double nearest = std::numeric_limits<double>::infinity();
         for (int a = 0; a < 3; ++a) {
           const double down = c[a] - lo[i][a], up = hi[i][a] - c[a];
-          if (down < nearest) nearest = down, best.normal = -Eigen::Vector3d::Unit(a), best.point = c, best.point[a] = lo[i][a];
-          if (up < nearest) nearest = up, best.normal = Eigen::Vector3d::Unit(a), best.point = c, best.point[a] = hi[i][a];
+          if (down < nearest)
+            nearest = down, best.normal = -Eigen::Vector3d::Unit(a), best.point = c, best.point[a] = lo[i][a];
+          if (up < nearest)
+            nearest = up, best.normal = Eigen::Vector3d::Unit(a), best.point = c, best.point[a] = hi[i][a];
         }
         best.distance = -nearest;
       }

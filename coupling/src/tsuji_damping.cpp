@@ -23,7 +23,10 @@ double tsuji_restitution(double alpha)
   double lo = 0.0, hi = 1.0;
   for (int it = 0; it < 200 && hi - lo > 1e-15; ++it) {
     const double mid = 0.5 * (lo + hi);
-    if (tsuji_alpha(mid) > alpha) lo = mid; else hi = mid;
+    if (tsuji_alpha(mid) > alpha)
+      lo = mid;
+    else
+      hi = mid;
   }
   return 0.5 * (lo + hi);
 }

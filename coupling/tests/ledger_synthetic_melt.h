@@ -1,6 +1,6 @@
 #pragma once
 // A synthetic coupled melt for the ledger tests, built the way the solver will book it:
-// particles heat and melt with heat_melt_step (thesis eq. 2.3, 2.9, 2.13) in a column of gas
+// particles heat and melt with heat_melt_step (Codina2019 eq. 2.3, 2.9, 2.13) in a column of gas
 // cells; each particle's melt goes into three cells (weights 0.5/0.3/0.2), the heat it absorbs
 // is taken from its cell, gravity acts on it (an external particle source); gas flows through
 // the column (boundary in = out) and the molten metal leaves through the outlet at 10 % of
@@ -15,21 +15,24 @@
 
 namespace meltdem::coupling::testing {
 
-// thesis table 2.3 particle: m = 9.069e-7 kg, cp 48.35, Tm 1000 K, L = 0.248611 J / m,
+// Codina2019 table 2.3 particle: m = 9.069e-7 kg, cp 48.35, Tm 1000 K, L = 0.248611 J / m,
 // falling at M / m = 1.81408e-6 / 9.069e-7 m/s (eq. 2.37)
-inline MeltMaterial thesis_steel() { return {48.35, 1000.0, 0.248611 / 9.069e-7}; }
+inline MeltMaterial thesis_steel()
+{
+  return {48.35, 1000.0, 0.248611 / 9.069e-7};
+}
 constexpr double kThesisMass = 9.069e-7, kThesisRho = 8020.0, kThesisMomentum = 1.81408e-6;
 constexpr double kGasT = 1500.0, kGasK = 100.0, kKNu = 2.0 * kGasK;  // Nu = 2 as in test_particle_melting
 
 struct SyntheticOptions {
-  int particles = 1;             // particle p has mass kThesisMass * (1 + 0.37 p) and melts in cell 3 p + 1
-  int melt_steps = 200;          // steps of the melting phase (dt chosen so the first particle melts)
-  int outflow_steps = 50;        // steps after the melt, metal leaving through the outlet
-  int rank = 0, size = 1;        // ownership of particles and cells (round robin)
-  int skip_cell_update_step = -1;  // a deliberately missing booking: the melt of this step never reaches the cells
+  int particles = 1;                   // particle p has mass kThesisMass * (1 + 0.37 p) and melts in cell 3 p + 1
+  int melt_steps = 200;                // steps of the melting phase (dt chosen so the first particle melts)
+  int outflow_steps = 50;              // steps after the melt, metal leaving through the outlet
+  int rank = 0, size = 1;              // ownership of particles and cells (round robin)
+  int skip_cell_update_step = -1;      // a deliberately missing booking: the melt of this step never reaches the cells
   int skip_outflow_booking_step = -1;  // the outflow of this step leaves the cells but is not booked
-  int lose_particle_step = -1;   // particle 0 leaves the mesh at this step (booked as lost)
-  bool drop_lost_silently = false;  // ... or vanishes without booking (the defect the ledger must catch)
+  int lose_particle_step = -1;         // particle 0 leaves the mesh at this step (booked as lost)
+  bool drop_lost_silently = false;     // ... or vanishes without booking (the defect the ledger must catch)
   double gravity = -9.81;
   std::function<void(const LedgerStep &)> on_step;  // called after every end_step
 };
@@ -38,7 +41,7 @@ struct Cell {
   double gas_m = 0.0, gas_h = 0.0, gas_u = 0.0;  // gas: mass, specific enthalpy, y velocity
   double metal_m = 0.0, metal_H = 0.0;           // metal mass and enthalpy
   double metal_P[3] = {0.0, 0.0, 0.0};           // metal momentum
-  double heat_taken = 0.0;                        // heat given to particles (gas loses it)
+  double heat_taken = 0.0;                       // heat given to particles (gas loses it)
   double gas_P[3] = {0.0, 0.0, 0.0};             // gas momentum change from drag (none here)
 };
 
@@ -65,9 +68,10 @@ inline void run_synthetic_melt(ConservationLedger &ledger, const SyntheticOption
   std::vector<P> ps;
   for (int p = 0; p < o.particles; ++p) {
     const double m = kThesisMass * (1.0 + 0.37 * p);
-    ps.push_back({m, std::cbrt(6.0 * m / (M_PI * kThesisRho)), 0.0, Eigen::Vector3d(0.01 * p, v0, -0.02 * p), true, false});
+    ps.push_back(
+        {m, std::cbrt(6.0 * m / (M_PI * kThesisRho)), 0.0, Eigen::Vector3d(0.01 * p, v0, -0.02 * p), true, false});
   }
-  const double dt = 2.2e-3 / o.melt_steps;  // the thesis particle melts in ~2.1 ms at Nu = 2
+  const double dt = 2.2e-3 / o.melt_steps;  // the Codina2019 particle melts in ~2.1 ms at Nu = 2
   const auto owns_cell = [&](int i) { return i % o.size == o.rank; };
   const auto owns_particle = [&](int p) { return p % o.size == o.rank; };
   const double weights[3] = {0.5, 0.3, 0.2};

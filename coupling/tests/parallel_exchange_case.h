@@ -20,7 +20,8 @@ inline std::vector<double> grid_nodes(double lo, double hi, int n, double stretc
 }
 
 struct ExchangeCase {
-  std::vector<double> x = grid_nodes(0, 1e-3, 12, 0.3), y = grid_nodes(0, 8e-4, 8, 0.0), z = grid_nodes(0, 6e-4, 6, -0.2);
+  std::vector<double> x = grid_nodes(0, 1e-3, 12, 0.3), y = grid_nodes(0, 8e-4, 8, 0.0),
+                      z = grid_nodes(0, 6e-4, 6, -0.2);
   std::vector<ParticleShape> particles;
   std::vector<Amounts> amounts;
   explicit ExchangeCase(int n = 60)
@@ -34,7 +35,8 @@ struct ExchangeCase {
       p.radius = ur(rng);
       p.id = i + 1;
       particles.push_back(p);
-      amounts.push_back(make_amounts(1e-9 * (i + 1), 3e-4 * (i + 2), Eigen::Vector3d(1e-9 * i, -2e-9, 5e-10 * (i % 3))));
+      amounts.push_back(
+          make_amounts(1e-9 * (i + 1), 3e-4 * (i + 2), Eigen::Vector3d(1e-9 * i, -2e-9, 5e-10 * (i % 3))));
     }
   }
   // the cells with i in [i0, i1) as a mesh of their own (one rank's part)

@@ -1,5 +1,5 @@
-// Conservation ledger (issue 5): thesis 2.3 balance errors (eq. 2.20, 2.26, 2.36) on a
-// synthetic melt of the thesis particle, detection of a missing booking, lost particles
+// Conservation ledger: Codina2019 §2.3 balance errors (eq. 2.20, 2.26, 2.36) on a
+// synthetic melt of the Codina2019 particle, detection of a missing booking, lost particles
 // booked as outflow, the CSV a user plots.
 #include "ledger_synthetic_melt.h"
 #include "meltdem/coupling/conservation_ledger.h"
@@ -43,11 +43,14 @@ class MpiEnvironment : public ::testing::Environment {
 
 const char *const names[kComponents] = {"mass", "enthalpy", "momentum x", "momentum y", "momentum z"};
 
-// Per-step tolerance: a few roundings of the amounts moved, over the thesis denominator (the
+// Per-step tolerance: a few roundings of the amounts moved, over the Codina2019 denominator (the
 // new total). The synthetic gas holds ~1.5e-3 J while ~0.3 J pass through the cells (heat
 // taken, melt enthalpy returned), so one rounding of the moved enthalpy is ~200 eps of the
 // total: 1e-13 for enthalpy, 1e-14 for mass and momentum (moved amounts ~ the totals).
-double step_tol(int q) { return q == kEnthalpy ? 1e-13 : 1e-14; }
+double step_tol(int q)
+{
+  return q == kEnthalpy ? 1e-13 : 1e-14;
+}
 
 // the step of the largest |error| of one component
 double worst_at(const ConservationLedger &l, Amounts LedgerStep::*field, int q, std::int64_t *at = nullptr)
@@ -73,14 +76,17 @@ TEST(ConservationLedger, ThesisParticleMeltBalancesClose)
   const auto &h = ledger.history();
   ASSERT_EQ(static_cast<int>(h.size()), o.melt_steps + o.outflow_steps + 1);
 
-  // per-step thesis errors (continuum) and whole-system errors; thesis reached 2e-13 (mass),
+  // per-step Codina2019 errors (continuum) and whole-system errors; Codina2019 reached 2e-13 (mass),
   // 1.5e-5 (energy), 1.5e-6 (momentum)
   const Amounts wc = ledger.worst_continuum_error(), ws = ledger.worst_system_error();
   for (int q : {kMass, kEnthalpy, kMomY}) {
-    expect_absolute(std::string("worst per-step continuum error, ") + names[q] + " (eq. 2.20/2.26/2.36)", wc[q], 0.0, step_tol(q));
+    expect_absolute(std::string("worst per-step continuum error, ") + names[q] + " (eq. 2.20/2.26/2.36)", wc[q], 0.0,
+                    step_tol(q));
     expect_absolute(std::string("worst per-step system error, ") + names[q], ws[q], 0.0, step_tol(q));
-    expect_absolute(std::string("final cumulative system error, ") + names[q], std::abs(h.back().cumulative_system_error[q]), 0.0, 1e-13);
-    expect_absolute(std::string("final cumulative continuum error, ") + names[q], std::abs(h.back().cumulative_continuum_error[q]), 0.0, 1e-13);
+    expect_absolute(std::string("final cumulative system error, ") + names[q],
+                    std::abs(h.back().cumulative_system_error[q]), 0.0, 1e-13);
+    expect_absolute(std::string("final cumulative continuum error, ") + names[q],
+                    std::abs(h.back().cumulative_continuum_error[q]), 0.0, 1e-13);
   }
   // x/z momentum: exactly zero here (particle 0 moves along y), so the errors are exactly 0
   EXPECT_EQ(wc[kMomX], 0.0);
@@ -116,7 +122,7 @@ TEST(ConservationLedger, MissingBookingIsDetected)
     const double e = worst_at(ledger, &LedgerStep::continuum_error, kMass, &at);
     expect_absolute("step of the missing melt booking", static_cast<double>(at), 40.0, 0.0);
     EXPECT_GT(e, tol) << "missing melt not detected in the continuum mass balance";
-    // the thesis form exactly: (sources - (new - old)) / new = the melt that never arrived / new
+    // the Codina2019 form exactly: (sources - (new - old)) / new = the melt that never arrived / new
     const LedgerStep &s40 = ledger.history()[40];
     double den = std::abs(s40.booked[kContinuum][kMass]);
     for (int k = 0; k <= 40; ++k) den = std::max(den, std::abs(ledger.history()[k].system_total[kMass]));
@@ -160,15 +166,16 @@ TEST(ConservationLedger, LostParticleIsBookedAsOutflow)
   run_synthetic_melt(ledger, o);
   const Amounts ws = ledger.worst_system_error();
   for (int q : {kMass, kEnthalpy, kMomX, kMomY, kMomZ})
-    expect_absolute(std::string("worst per-step system error with a lost particle, ") + names[q], ws[q], 0.0, step_tol(q));
+    expect_absolute(std::string("worst per-step system error with a lost particle, ") + names[q], ws[q], 0.0,
+                    step_tol(q));
   EXPECT_GT(lost_mass, 0.1 * kThesisMass);
   EXPECT_LT(lost_mass, kThesisMass);
   expect_relative("cumulative lost mass = mass at leaving", ledger.last().cumulative_lost[kMass], lost_mass, 0.0);
   // the metal of the lost particle never reached the continuum; the rest did
   ExactSum exchanged;
   for (const auto &s : ledger.history()) exchanged.add(s.booked[kExchange][kMass]);
-  expect_relative("exchanged + lost = initial particle mass", exchanged.value() + lost_mass,
-                  kThesisMass * (1.0 + 1.37), 1e-15);
+  expect_relative("exchanged + lost = initial particle mass", exchanged.value() + lost_mass, kThesisMass * (1.0 + 1.37),
+                  1e-15);
 
   // the same particle vanishing without booking: the system balance catches it at that step
   ConservationLedger silent(MPI_COMM_SELF);
@@ -271,11 +278,12 @@ TEST(ConservationLedger, PendingFeedAndReferenceScale)
     for (int q : {kMass, kEnthalpy}) EXPECT_LE(std::abs(s.system_error[q]), 1e-15) << s.step << " " << names[q];
   expect_absolute("inserted pending powder: system mass error", std::abs(ok[2].system_error[kMass]), 0.0, 1e-15);
   // the stray momentum m * 1e-3 shows against the scale 1e-6, not as inf or NaN
-  expect_relative("momentum from nowhere / reference scale", std::abs(ok[3].system_error[kMomY]), m * 1e-3 / 1e-6, 1e-12);
+  expect_relative("momentum from nowhere / reference scale", std::abs(ok[3].system_error[kMomY]), m * 1e-3 / 1e-6,
+                  1e-12);
   const auto missing = run(false, scale);
   EXPECT_GT(std::abs(missing[1].system_error[kMass]), 1e-3) << "unbooked feed not detected";
   // no scale given: the automatic floor is the largest |total| seen, i.e. the stray momentum
-  // itself: the thesis form gives (0 - (M_new - 0)) / |M_new| = -1, never inf or NaN
+  // itself: the Codina2019 form gives (0 - (M_new - 0)) / |M_new| = -1, never inf or NaN
   const auto no_scale = run(true, Amounts{});
   EXPECT_EQ(no_scale[3].system_error[kMomY], -1.0);
   EXPECT_EQ(no_scale[2].system_error[kMomY], 0.0);
@@ -302,7 +310,7 @@ std::vector<std::string> read_lines(const std::string &path)
 }
 }  // namespace
 
-// A run stopped after its checkpoint and resumed from it (issue 7): a fresh ledger that loads
+// A run stopped after its checkpoint and resumed from it: a fresh ledger that loads
 // the state saved after step k and books steps k+1.. ends with every total, error and
 // cumulative of the uninterrupted ledger, bit for bit, and its CSV (the stopped run wrote 3
 // rows past the checkpoint) equals the uninterrupted CSV line for line.

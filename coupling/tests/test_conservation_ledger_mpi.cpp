@@ -1,4 +1,4 @@
-// Conservation ledger over MPI (issue 5): run with mpirun -np 2. Particles and cells of the
+// Conservation ledger over MPI: run with mpirun -np 2. Particles and cells of the
 // synthetic melt are split round-robin over the ranks; every rank also runs the whole case
 // alone on MPI_COMM_SELF. The reduced totals and errors must equal the serial ones to 1e-12.
 #include "mpi_gtest.h"
@@ -72,6 +72,7 @@ TEST(ConservationLedgerMpi, TotalsEqualSerial)
     compare(std::string("np: worst per-step system error, ") + component_name(Component(q)), ws[q], tol);
     compare(std::string("np: worst per-step continuum error, ") + component_name(Component(q)), wc[q], tol);
   }
-  if (rank == 0) std::cout << "np " << size << ": " << hp.size() << " steps, worst total difference " << worst_total
-                           << ", worst error difference " << worst_error << std::endl;
+  if (rank == 0)
+    std::cout << "np " << size << ": " << hp.size() << " steps, worst total difference " << worst_total
+              << ", worst error difference " << worst_error << std::endl;
 }

@@ -1,4 +1,4 @@
-// Drag laws: thesis eq. 2.14 (exponent corrected to -1/3) and Schiller-Naumann.
+// Drag laws: Codina2019 eq. 2.14 (exponent corrected to -1/3) and Schiller-Naumann.
 #include "meltdem/coupling/drag.h"
 #include "validation_report.h"
 

@@ -13,7 +13,8 @@ namespace {
 
 // a 10 x 10 x 10 grid of 1 mm cells with fields linear in x, y, z
 struct LinearFields {
-  CartesianGridMesh mesh = CartesianGridMesh::uniform(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1e-2, 1e-2, 1e-2), 10, 10, 10);
+  CartesianGridMesh mesh =
+      CartesianGridMesh::uniform(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1e-2, 1e-2, 1e-2), 10, 10, 10);
   std::vector<double> T, k, rho, mu, cp, U, alpha, fl;
   CellFluidFields view;
   static double Tof(const Eigen::Vector3d &x) { return 1500.0 + 2e4 * x[0] - 1e4 * x[1] + 3e3 * x[2]; }
@@ -65,7 +66,7 @@ TEST(FluidSampling, LinearFieldAtASymmetricParticleIsTheCentreValue)
     FluidState s;
     ASSERT_TRUE(provider.fluid_state(0, c.data(), s));
     meltdem::testing::expect_relative(std::string("T at a symmetric particle [K], model ") + to_string(model), s.T,
-                                  LinearFields::Tof(c), 1e-12);
+                                      LinearFields::Tof(c), 1e-12);
   }
 }
 
@@ -77,7 +78,7 @@ TEST(FluidSampling, MetalFractionAndOutsideParticles)
   ASSERT_TRUE(distribute_particle(f.mesh, DistributionModel::Overlap, Eigen::Vector3d(5e-3, 5e-3, 5e-3), 1.5e-3, w));
   const SampledFluid s = sample_fluid(w, f.view);
   meltdem::testing::expect_relative("metal fraction seen by a particle on the interface (overlap)", s.alpha_metal, 0.5,
-                                1e-12);
+                                    1e-12);
   meltdem::testing::expect_relative("liquid fraction seen", s.liquid_fraction, 0.25, 1e-14);
   const double radii[1] = {1e-4};
   MeshFluidProvider provider(f.mesh, DistributionModel::Centre, f.view, radii);

@@ -1,4 +1,4 @@
-// Ranz-Marshall heat transfer (thesis eq. 2.13) against values computed by hand.
+// Ranz-Marshall heat transfer (Codina2019 eq. 2.13) against values computed by hand.
 #include "meltdem/coupling/heat_transfer.h"
 #include "validation_report.h"
 
@@ -17,7 +17,7 @@ TEST(HeatTransfer, RanzMarshall)
 
 TEST(HeatTransfer, CoefficientAndRate)
 {
-  // thesis 2.3 gas: k = 100 W/m/K, d = 600 um, Nu = 2 -> h = 333333.3 W/m^2/K
+  // Codina2019 §2.3 gas: k = 100 W/m/K, d = 600 um, Nu = 2 -> h = 333333.3 W/m^2/K
   const double h = heat_transfer_coefficient(100.0, 2.0, 600e-6);
   expect_relative("h [W/m2K]", h, 333333.3333333333, 1e-13);
   // Q = h pi d^2 (1500 - 0) = 565.4867 W

@@ -56,24 +56,23 @@ TEST(HertzRestitution, ElasticLimit)
 TEST(HertzRestitution, MatchesIndependentIntegration)
 {
   for (double alpha : {0.01, 0.075, 0.25, 0.48, 0.8, 1.0, 1.5})
-    expect_absolute("e(alpha=" + std::to_string(alpha) + ") vs dimensional RK4",
-                    restitution_for_alpha(alpha), dimensional_restitution(alpha), 1e-6);
+    expect_absolute("e(alpha=" + std::to_string(alpha) + ") vs dimensional RK4", restitution_for_alpha(alpha),
+                    dimensional_restitution(alpha), 1e-6);
 }
 
 TEST(HertzRestitution, InverseRoundTrip)
 {
   for (double e : {0.05, 0.1, 0.3, 0.5, 0.7, 0.9, 0.99})
-    expect_absolute("e(alpha(e=" + std::to_string(e) + "))",
-                    restitution_for_alpha(alpha_for_restitution(e)), e, 1e-6);
+    expect_absolute("e(alpha(e=" + std::to_string(e) + "))", restitution_for_alpha(alpha_for_restitution(e)), e, 1e-6);
 }
 
 TEST(HertzRestitution, ExplainsStockBias)
 {
-  // issue 3 measured with stock LAMMPS (Tsuji polynomial): 0.439 0.617 0.782 0.929
+  // restitution of stock LAMMPS (Tsuji polynomial) from LAMMPS runs: the exact map explains the bias
   const double e[] = {0.3, 0.5, 0.7, 0.9}, measured[] = {0.439, 0.617, 0.782, 0.929};
   for (int i = 0; i < 4; ++i)
-    expect_absolute("stock e for prescribed " + std::to_string(e[i]),
-                    restitution_for_alpha(tsuji_alpha(e[i])), measured[i], 0.005);
+    expect_absolute("stock e for prescribed " + std::to_string(e[i]), restitution_for_alpha(tsuji_alpha(e[i])),
+                    measured[i], 0.005);
 }
 
 TEST(HertzRestitution, RejectsBadInput)

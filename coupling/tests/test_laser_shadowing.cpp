@@ -137,7 +137,7 @@ TEST(LaserShadowing, HiddenParticleAbsorbsNothing)
   const GaussianBeam b = test_beam();
   const double w = b.radius, R = 0.4 * w;
   const BeamParticle top{beam_point(b, 5 * R, 0.3 * w, -0.2 * w), R};
-  const BeamParticle below{beam_point(b, 3 * R, 0.3 * w, -0.2 * w), R};  // touching, under it
+  const BeamParticle below{beam_point(b, 3 * R, 0.3 * w, -0.2 * w), R};               // touching, under it
   const BeamParticle small{beam_point(b, -R, 0.3 * w + 0.5 * R, -0.2 * w), 0.4 * R};  // in its shadow
   ShadowOptions opt;  // the same grid with and without the small particle
   opt.cells_per_particle_radius = 0.0;
@@ -153,8 +153,8 @@ TEST(LaserShadowing, HiddenParticleAbsorbsNothing)
   expect_absolute("transmitted fraction beside the pair", transmitted_fraction(r, beam_point(b, 0.0, -0.5 * w, 0.0)),
                   1.0, 0.0);
   // above the top particle the beam has not been intercepted yet
-  expect_absolute("transmitted fraction above the top particle", transmitted_fraction(r, beam_point(b, 8 * R, 0.3 * w, -0.2 * w)),
-                  1.0, 0.0);
+  expect_absolute("transmitted fraction above the top particle",
+                  transmitted_fraction(r, beam_point(b, 8 * R, 0.3 * w, -0.2 * w)), 1.0, 0.0);
   // the beam reversed: the former bottom particle now hides the former top one
   GaussianBeam up = b;
   up.direction = -b.direction;
@@ -204,12 +204,12 @@ TEST(LaserShadowing, ManyParticlesBalanceCloses)
   std::cout << "300 particles: intercepted " << r.intercepted_total << " W of " << P << " W, " << rays.size()
             << " transmitted rays, tail " << r.tail_power << " W\n";
   std::cout << std::setprecision(17) << "balance: (sum(absorbed) + eta (rays + tail)) / (eta P) - 1 = "
-            << (sum(r.absorbed) + eta * continuum) / (eta * P) - 1.0 << ", with continuum_absorbed(): "
-            << (sum(r.absorbed) + r.continuum_absorbed()) / (eta * P) - 1.0 << std::setprecision(6) << "\n";
+            << (sum(r.absorbed) + eta * continuum) / (eta * P) - 1.0
+            << ", with continuum_absorbed(): " << (sum(r.absorbed) + r.continuum_absorbed()) / (eta * P) - 1.0
+            << std::setprecision(6) << "\n";
   expect_relative("sum(absorbed) + eta (transmitted rays + tail) [W]", sum(r.absorbed) + eta * continuum, eta * P,
                   1e-12);
-  expect_relative("sum(absorbed) + continuum_absorbed() [W]", sum(r.absorbed) + r.continuum_absorbed(), eta * P,
-                  1e-12);
+  expect_relative("sum(absorbed) + continuum_absorbed() [W]", sum(r.absorbed) + r.continuum_absorbed(), eta * P, 1e-12);
   expect_relative("transmitted rays + tail vs P - intercepted [W]", continuum, r.transmitted_power, 1e-12);
   EXPECT_GT(r.intercepted_total, 0.3 * P);  // the bed really shades
   EXPECT_LT(r.tail_power, 1e-14 * P);
@@ -376,8 +376,8 @@ TEST(LaserShadowing, CostPerParticle)
     for (int k = 0; k < reps; ++k) total += shade_particles(b, ps, opt).intercepted_total;
     const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() / reps;
     const ShadowGrid grid = shade_particles(b, ps, opt).grid;
-    std::cout << "COST 1000 particles (R = 0.15..0.4 w), cells_per_particle_radius " << cpr << ": 0.15 w / h = "
-              << 0.15 * w / grid.h << " (" << grid.n << "^2 rays): " << s * 1e3<< " ms per call, " << s / 1000 * 1e6 << " us per particle (intercepted "
-              << total / reps << " W)\n";
+    std::cout << "COST 1000 particles (R = 0.15..0.4 w), cells_per_particle_radius " << cpr
+              << ": 0.15 w / h = " << 0.15 * w / grid.h << " (" << grid.n << "^2 rays): " << s * 1e3 << " ms per call, "
+              << s / 1000 * 1e6 << " us per particle (intercepted " << total / reps << " W)\n";
   }
 }

@@ -44,8 +44,7 @@ std::vector<BeamParticle> bed(const GaussianBeam &b, int n)
   // some outside the sampled square (|u| up to 6 w) so the selection is exercised
   std::uniform_real_distribution<double> pos(-6 * w, 6 * w), rad(0.1 * w, 0.5 * w), z(0, 4 * w);
   std::vector<BeamParticle> ps;
-  for (int k = 0; k < n; ++k)
-    ps.push_back({b.centre + Eigen::Vector3d(pos(rng), pos(rng), z(rng)), rad(rng)});
+  for (int k = 0; k < n; ++k) ps.push_back({b.centre + Eigen::Vector3d(pos(rng), pos(rng), z(rng)), rad(rng)});
   return ps;
 }
 }  // namespace
@@ -73,8 +72,7 @@ TEST(LaserShadowingMpi, EqualsSerial)
   MPI_Allreduce(&worst, &worst_all, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
   MPI_Allreduce(&local_sum, &absorbed_sum, 1, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
   if (rank == 0)
-    meltdem::testing::expect_absolute("max |absorbed np - serial| per particle [W]", worst_all, 0.0,
-                                      1e-15 * b.power);
+    meltdem::testing::expect_absolute("max |absorbed np - serial| per particle [W]", worst_all, 0.0, 1e-15 * b.power);
   check("intercepted total np vs serial [W]", par.intercepted_total, serial.intercepted_total, 1e-13);
   check("sum over ranks of absorbed + continuum_absorbed() vs eta P [W]", absorbed_sum + par.continuum_absorbed(),
         b.absorptivity * b.power, 1e-12);

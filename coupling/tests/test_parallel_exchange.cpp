@@ -107,9 +107,9 @@ struct MeltOverGas {
   // with_volume: cell volumes given (heat by each cell's heat beyond the particle's temperature)
   CellFluidFields fields(bool with_volume) const
   {
-    return CellFluidFields{T.data(), k.data(),  rho.data(), mu.data(),
-                           cp.data(), U.data(), nullptr,    nullptr,
-                           with_volume ? V.data() : nullptr};
+    return CellFluidFields{T.data(),  k.data(),  rho.data(),
+                           mu.data(), cp.data(), U.data(),
+                           nullptr,   nullptr,   with_volume ? V.data() : nullptr};
   }
   static ParticleShape particle(DistributionModel model)
   {
@@ -159,10 +159,11 @@ TEST_P(ParallelExchangeSerial, HeatAndImpulseComeFromTheCellsByCapacityAndMass)
     impulse_x -= cells[std::size_t(c)][kMomX];
     if (T[std::size_t(c)] < 1000.0) from_gas -= cells[std::size_t(c)][kEnthalpy];
   }
-  meltdem::testing::expect_relative(std::string("deposit_taken ") + to_string(GetParam()) + ": heat taken from the cells",
-                                    taken, Q, 1e-14);
+  meltdem::testing::expect_relative(
+      std::string("deposit_taken ") + to_string(GetParam()) + ": heat taken from the cells", taken, Q, 1e-14);
   meltdem::testing::expect_relative(std::string("deposit_taken ") + to_string(GetParam()) +
-                                        ": impulse taken from the cells (x)", impulse_x, I.x(), 1e-14);
+                                        ": impulse taken from the cells (x)",
+                                    impulse_x, I.x(), 1e-14);
   // the gas's share: its capacity-weighted fraction
   EXPECT_NEAR(from_gas, Q * (1 - metal_w) * rhocp_gas / cap, 1e-12 * Q);
   if (metal_w < 1.0) EXPECT_LT(from_gas, 1e-4 * Q);
@@ -217,8 +218,8 @@ TEST_P(ParallelExchangeSerial, HeatComesFromTheCellsBeyondTheParticlesTemperatur
     if (Q < 0) {
       if (room_cold > 0) {
         EXPECT_EQ(from_melt, 0.0);
-        meltdem::testing::expect_relative("deposit_taken " + m + " by room: heat given goes to the gas", from_gas,
-                                          Q, 1e-13);
+        meltdem::testing::expect_relative("deposit_taken " + m + " by room: heat given goes to the gas", from_gas, Q,
+                                          1e-13);
       }
       continue;
     }

@@ -28,7 +28,8 @@ TEST_P(ParallelExchangeMpi, EqualsOneRank)
   const int i0 = rank == 0 ? 0 : cut, i1 = rank == 0 ? cut : nx;
   const CartesianGridMesh whole(k.x, k.y, k.z), mine = k.part(i0, i1);
 
-  auto fields = [&](const CartesianGridMesh &m, std::vector<double> &T, std::vector<double> &one, std::vector<double> &U) {
+  auto fields = [&](const CartesianGridMesh &m, std::vector<double> &T, std::vector<double> &one,
+                    std::vector<double> &U) {
     for (long c = 0; c < m.n_cells(); ++c) {
       const Eigen::Vector3d x = m.cell_centre(c);
       T.push_back(ExchangeCase::field(x));
@@ -36,8 +37,8 @@ TEST_P(ParallelExchangeMpi, EqualsOneRank)
       U.insert(U.end(), {x.x(), x.y(), x.z()});
     }
     // cell "volumes" vary too, so the heat goes by what each cell holds beyond the particle
-    return CellFluidFields{T.data(), one.data(), one.data(), one.data(), one.data(), U.data(), one.data(), nullptr,
-                           one.data()};
+    return CellFluidFields{T.data(), one.data(), one.data(), one.data(), one.data(),
+                           U.data(), one.data(), nullptr,    one.data()};
   };
 
   // reference: everything on this rank alone
@@ -49,7 +50,8 @@ TEST_P(ParallelExchangeMpi, EqualsOneRank)
   serial.deposit(k.amounts, cells_serial);
   std::vector<double> heat, particle_T;
   std::vector<Eigen::Vector3d> impulse;
-  for (const Amounts &a : k.amounts) heat.push_back(a[kEnthalpy] * 0.3), impulse.push_back(Eigen::Vector3d(a[kMomY], a[kMomZ], a[kMomX]));
+  for (const Amounts &a : k.amounts)
+    heat.push_back(a[kEnthalpy] * 0.3), impulse.push_back(Eigen::Vector3d(a[kMomY], a[kMomZ], a[kMomX]));
   // the field at the centre: some covered cells are above, some below the particle
   for (const auto &p : k.particles) particle_T.push_back(ExchangeCase::field(p.x));
   std::vector<std::int64_t> ids;
@@ -64,8 +66,7 @@ TEST_P(ParallelExchangeMpi, EqualsOneRank)
   std::vector<std::size_t> my_index;
   for (std::size_t i = 0; i < k.particles.size(); ++i)
     if (int(i % 2) == rank)
-      my_particles.push_back(k.particles[i]), my_amounts.push_back(k.amounts[i]), 
-          my_index.push_back(i);
+      my_particles.push_back(k.particles[i]), my_amounts.push_back(k.amounts[i]), my_index.push_back(i);
   std::vector<double> Tp, onep, Up;
   const CellFluidFields fp = fields(mine, Tp, onep, Up);
   ParallelExchange parallel(mine, GetParam(), MPI_COMM_WORLD);
@@ -101,15 +102,17 @@ TEST_P(ParallelExchangeMpi, EqualsOneRank)
     ASSERT_EQ(parallel.inside(l), serial.inside(my_index[l]));
     if (!parallel.inside(l)) continue;
     const auto &a = sampled_parallel[l], &b = sampled_serial[my_index[l]];
-    worst_sample = std::max({worst_sample, std::abs(a.fluid.T - b.fluid.T) / b.fluid.T,
-                             std::abs(a.fluid.U[0] - b.fluid.U[0]) / 1e-3});
+    worst_sample = std::max(
+        {worst_sample, std::abs(a.fluid.T - b.fluid.T) / b.fluid.T, std::abs(a.fluid.U[0] - b.fluid.U[0]) / 1e-3});
   }
   double w[2] = {worst_cell, worst_sample};
   MPI_Allreduce(MPI_IN_PLACE, w, 2, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
   const std::string m = to_string(GetParam());
   if (rank == 0) {
-    meltdem::testing::expect_absolute("parallel_exchange np2 " + m + ": cell deposit vs one rank (relative to the largest amount)", w[0], 0.0, 1e-12);
-    meltdem::testing::expect_absolute("parallel_exchange np2 " + m + ": sampled fields vs one rank (relative)", w[1], 0.0, 1e-12);
+    meltdem::testing::expect_absolute(
+        "parallel_exchange np2 " + m + ": cell deposit vs one rank (relative to the largest amount)", w[0], 0.0, 1e-12);
+    meltdem::testing::expect_absolute("parallel_exchange np2 " + m + ": sampled fields vs one rank (relative)", w[1],
+                                      0.0, 1e-12);
   } else {
     EXPECT_LE(w[0], 1e-12);
     EXPECT_LE(w[1], 1e-12);

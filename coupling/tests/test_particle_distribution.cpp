@@ -1,4 +1,4 @@
-// Particle -> cell distribution (thesis 3.2.3, eq. 3.7): weights sum to 1, conservation,
+// Particle -> cell distribution (Codina2019 §3.2.3, eq. 3.7): weights sum to 1, conservation,
 // sphere-box overlap against analytic sphere / cap / octant volumes, domain clipping.
 #include "meltdem/coupling/particle_distribution.h"
 #include "meltdem/coupling/exact_sum.h"
@@ -14,17 +14,23 @@
 #include <vector>
 
 using namespace meltdem::coupling;
+using Eigen::Vector3d;
 using meltdem::testing::expect_absolute;
 using meltdem::testing::expect_relative;
-using Eigen::Vector3d;
 
 namespace {
 
 const double kEps = std::numeric_limits<double>::epsilon();
 
-double sphere_volume(double r) { return 4.0 / 3.0 * M_PI * r * r * r; }
+double sphere_volume(double r)
+{
+  return 4.0 / 3.0 * M_PI * r * r * r;
+}
 // volume of the cap of height h cut from a sphere of radius r
-double cap_volume(double r, double h) { return M_PI * h * h * (3.0 * r - h) / 3.0; }
+double cap_volume(double r, double h)
+{
+  return M_PI * h * h * (3.0 * r - h) / 3.0;
+}
 
 // sum of the raw sphere-cell overlaps over the mesh (what `overlap` normalises by)
 double overlap_in_mesh(const DistributionMesh &mesh, const Vector3d &c, double r)
@@ -99,8 +105,8 @@ TEST(ParticleDistribution, OverlapSumsToSphereVolume)
   for (double cells_per_d : {3.0, 6.5, 10.0}) {
     const double r = 1.0, h = 2.0 * r / cells_per_d;
     const int n = int(std::ceil(6.0 * r / h));
-    const auto mesh = CartesianGridMesh::uniform(Vector3d(-3, -3, -3), Vector3d(-3, -3, -3) + Vector3d::Constant(n * h),
-                                                 n, n, n);
+    const auto mesh =
+        CartesianGridMesh::uniform(Vector3d(-3, -3, -3), Vector3d(-3, -3, -3) + Vector3d::Constant(n * h), n, n, n);
     double worst = 0.0;
     for (int t = 0; t < 20; ++t) {
       const Vector3d c(u(rng), u(rng), u(rng));
@@ -164,7 +170,7 @@ TEST(ParticleDistribution, NeighboursEq37ByHand)
   // inside its cell: centre only
   ASSERT_TRUE(distribute_particle(mesh, DistributionModel::Neighbours, Vector3d(2.0, 2.5, 1.5), 0.2, w));
   expect_absolute("particle inside its cell: number of cells", double(w.size()), 1.0, 0.0);
-  // thesis fig. 3.10: particle larger than a uniform cell -> 7 cells of 1/7 = 0.1429
+  // Codina2019 fig. 3.10: particle larger than a uniform cell -> 7 cells of 1/7 = 0.1429
   const auto uni = CartesianGridMesh::uniform(Vector3d(0, 0, 0), Vector3d(5, 5, 5), 5, 5, 5);
   ASSERT_TRUE(distribute_particle(uni, DistributionModel::Neighbours, Vector3d(2.5, 2.5, 2.5), 0.8, w));
   expect_absolute("fig. 3.10: number of occupied cells", double(w.size()), 7.0, 0.0);
@@ -260,8 +266,8 @@ TEST(ParticleDistribution, CostPerParticleNote)
         cells += w.size();
       }
       const double us = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count() / np;
-      std::cout << "NOTE cost " << to_string(model) << " @ " << cells_per_d << " cells/d: " << us
-                << " us/particle, " << double(cells) / np << " cells/particle" << std::endl;
+      std::cout << "NOTE cost " << to_string(model) << " @ " << cells_per_d << " cells/d: " << us << " us/particle, "
+                << double(cells) / np << " cells/particle" << std::endl;
     }
   }
 }

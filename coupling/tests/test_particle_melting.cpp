@@ -1,5 +1,5 @@
-// Heating and melting of one particle (thesis eq. 2.3, 2.9, 2.13): exact integration over a
-// step, exact bookkeeping, the thesis 2.3 particle.
+// Heating and melting of one particle (Codina2019 eq. 2.3, 2.9, 2.13): exact integration over a
+// step, exact bookkeeping, the Codina2019 §2.3 particle.
 #include "meltdem/coupling/exact_sum.h"
 #include "meltdem/coupling/particle_melting.h"
 #include "validation_report.h"
@@ -12,7 +12,7 @@ using meltdem::testing::expect_absolute;
 using meltdem::testing::expect_relative;
 
 namespace {
-// thesis table 2.3 particle, table 2.2 gas (Nu = 2: particle at rest in the gas)
+// Codina2019 table 2.3 particle, table 2.2 gas (Nu = 2: particle at rest in the gas)
 const MeltMaterial steel{48.35, 1000.0, 0.248611 / 9.069e-7};
 const double d0 = 600e-6, rho = 8020.0, m0 = M_PI / 6.0 * rho * d0 * d0 * d0;
 const double k_gas = 100.0, T_gas = 1500.0, k_nu = 2.0 * k_gas;
@@ -34,8 +34,8 @@ TEST(ParticleMelting, HeatingAtRestIsExactForAnyStep)
     }
     const double T_ref = T_gas + (T0 - T_gas) * std::exp(-t_end / tau);
     expect_relative("T(1.5 tau), " + std::to_string(nsteps) + " steps", particle_temperature(hot, h), T_ref, 1e-12);
-    expect_relative("heat absorbed = m cp dT, " + std::to_string(nsteps) + " steps", heat,
-                    m0 * hot.cp * (T_ref - T0), 1e-11);
+    expect_relative("heat absorbed = m cp dT, " + std::to_string(nsteps) + " steps", heat, m0 * hot.cp * (T_ref - T0),
+                    1e-11);
   }
 }
 
@@ -51,7 +51,7 @@ TEST(ParticleMelting, CoolingRelaxesTowardsFluid)
 
 TEST(ParticleMelting, Thesis23ParticleBooksEverything)
 {
-  // the thesis 2.3 particle heats from 0 K and melts completely; every step conserves
+  // the Codina2019 §2.3 particle heats from 0 K and melts completely; every step conserves
   // m h + handed-over enthalpy, and the totals match m cp Tm + m L
   const double dt = 1e-6;
   double h = 0.0, m = m0, d = d0;
@@ -135,7 +135,7 @@ TEST(ParticleMelting, AbsorbHeatKeepsTheBalanceAndMeltsTheExcess)
 {
   const MeltMaterial mat{500.0, 1700.0, 2.7e5};
   const double d = 1e-4, m = 7800 * M_PI / 6 * d * d * d, h = 500.0 * 300.0;
-  const double half = m * 500 * 1400 + 0.5 * m * 2.7e5;  // to Tm, then half the latent heat
+  const double half = m * 500 * 1400 + 0.5 * m * 2.7e5;      // to Tm, then half the latent heat
   for (double E : {0.0, 1e-4, m * 500 * 1400, half, 1.0}) {  // nothing, sensible, to Tm, partly, all molten
     const MeltStepResult r = absorb_heat(mat, h, m, d, E);
     EXPECT_NEAR(m * h + E, r.m * r.h + r.enthalpy_out, 1e-15 * (m * h + E)) << "E = " << E;
@@ -152,7 +152,7 @@ TEST(ParticleMelting, AbsorbHeatKeepsTheBalanceAndMeltsTheExcess)
 
 TEST(ParticleMelting, ConductanceIsKNuPiD)
 {
-  // at rest Nu = 2 (thesis gas, 600 um: 0.377 W/K); with slip Ranz-Marshall
+  // at rest Nu = 2 (Codina2019 gas, 600 um: 0.377 W/K); with slip Ranz-Marshall
   FluidState gas;
   gas.k = k_gas;
   gas.rho = 1.6115;
@@ -180,7 +180,7 @@ TEST(ParticleMelting, HeatExchangeTimeIsTheWorstCell)
 
 TEST(ParticleMelting, FrozenFluidStepOverdrawsASmallCell)
 {
-  // The thesis particle (m cp = 4.4e-5 J/K) in one 0.7 mm gas cell (C = 2.9e-6 J/K, 15x less),
+  // The Codina2019 particle (m cp = 4.4e-5 J/K) in one 0.7 mm gas cell (C = 2.9e-6 J/K, 15x less),
   // no melting (Tm huge), the cell's temperature frozen over each step and updated after it
   // (the explicit coupling). The cell passes below the particle's starting temperature once
   // (1 - exp(-dt/tau_p)) r > 1, r = m cp / C, i.e. dt > tau_p ln(r / (r - 1)) ~ C / G.
@@ -214,8 +214,8 @@ TEST(ParticleMelting, TemperatureOvershoot)
   expect_absolute("below by 12 K, 1 % allowance", temperature_overshoot(300, 1500, 276, 1500, 0.01, true),
                   12.0 - 1.5e-6, 1e-12);
   expect_absolute("above by 5 K", temperature_overshoot(300, 1500, 300, 1505, 0.0, true), 5.0 - 1.5e-6, 1e-12);
-  expect_absolute("isothermal, round-off", temperature_overshoot(300, 300, 300 - 1e-10, 300 + 1e-10, 0.01, true),
-                  0.0, 0.0);
+  expect_absolute("isothermal, round-off", temperature_overshoot(300, 300, 300 - 1e-10, 300 + 1e-10, 0.01, true), 0.0,
+                  0.0);
   expect_absolute("above, upper bound off", temperature_overshoot(300, 1500, 300, 1505, 0.0, false), 0.0, 0.0);
   EXPECT_TRUE(std::isinf(temperature_overshoot(300, 1500, NAN, 1500, 0.0, true)));
   EXPECT_THROW(temperature_overshoot(1500, 300, 300, 1500, 0.0, true), std::invalid_argument);

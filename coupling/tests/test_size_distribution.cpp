@@ -85,8 +85,7 @@ TEST(SizeDistribution, KolmogorovSmirnov)
   expect_absolute("KS normal", ks_statistic(SizeDistribution::normal(30, 6, 15, 45), 11, n), 0.0, crit);
   expect_absolute("KS lognormal byvolume",
                   ks_statistic(SizeDistribution::lognormal(28, 0.35, 15, 45).by_volume(), 12, n), 0.0, crit);
-  expect_absolute("KS rosin-rammler", ks_statistic(SizeDistribution::rosin_rammler(32, 4, 15, 45), 13, n), 0.0,
-                  crit);
+  expect_absolute("KS rosin-rammler", ks_statistic(SizeDistribution::rosin_rammler(32, 4, 15, 45), 13, n), 0.0, crit);
 }
 
 TEST(SizeDistribution, BadInputThrows)

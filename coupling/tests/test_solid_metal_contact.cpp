@@ -82,10 +82,10 @@ TEST(SolidMetalContact, FreezingAroundAGrainGivesNoKick)
   // pressed 0.1 R further into the unchanged surface: the force of an overlap of 0.1 R
   const Eigen::Vector3d pressed(0, 0.9 * R, 0);
   const double off = update_solid_contact(memory, higher, pressed, R);
-  meltdem::testing::expect_relative("solid metal contact: force after pressing 0.1 R into a surface that froze around",
-                                    solid_contact_force(higher, pressed, R, m, v, E, alpha, off).norm(),
-                                    solid_contact_force(plane(0.1 * R), Eigen::Vector3d(0, R, 0), R, m, v, E, alpha).norm(),
-                                    1e-12);
+  meltdem::testing::expect_relative(
+      "solid metal contact: force after pressing 0.1 R into a surface that froze around",
+      solid_contact_force(higher, pressed, R, m, v, E, alpha, off).norm(),
+      solid_contact_force(plane(0.1 * R), Eigen::Vector3d(0, R, 0), R, m, v, E, alpha).norm(), 1e-12);
   // moving out lowers the offset with the overlap; clear of the surface it is forgotten
   EXPECT_NEAR(update_solid_contact(memory, higher, Eigen::Vector3d(0, 2.0 * R, 0), R), 0.5 * R, 1e-18);
   EXPECT_EQ(update_solid_contact(memory, higher, Eigen::Vector3d(0, 3.0 * R, 0), R), 0.0);

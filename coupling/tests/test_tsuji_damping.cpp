@@ -6,8 +6,8 @@
 #include <string>
 
 using namespace meltdem::coupling;
-using meltdem::testing::expect_relative;
 using meltdem::testing::expect_absolute;
+using meltdem::testing::expect_relative;
 
 TEST(TsujiDamping, PolynomialValues)
 {
@@ -21,8 +21,7 @@ TEST(TsujiDamping, PolynomialValues)
 
 TEST(TsujiDamping, InverseRoundTrip)
 {
-  for (double e = 0.0; e <= 1.0; e += 0.05)
-    EXPECT_NEAR(tsuji_restitution(tsuji_alpha(e)), e, 1e-12) << "e = " << e;
+  for (double e = 0.0; e <= 1.0; e += 0.05) EXPECT_NEAR(tsuji_restitution(tsuji_alpha(e)), e, 1e-12) << "e = " << e;
   expect_absolute("e(alpha(0.5))", tsuji_restitution(0.3407406250000001), 0.5, 1e-12);
 }
 

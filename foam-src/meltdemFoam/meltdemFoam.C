@@ -7,8 +7,8 @@ Description
     round-off, plus what a powder-AM melt pool needs, each term switched on in
     constant/meltdemProperties only when a scene needs it:
       - energy in enthalpy form, latent heat between solidus and liquidus,
-        liquid fraction (thesis eq. 2.5-2.7 mixture properties);
-      - Darcy/Carman-Kozeny sink in solid and mushy metal (thesis eq. 2.10);
+        liquid fraction (Codina2019 eq. 2.5-2.7 mixture properties);
+      - Darcy/Carman-Kozeny sink in solid and mushy metal (Codina2019 eq. 2.10);
       - CSF surface tension with sigma(T), Marangoni force, recoil pressure;
       - Gaussian laser deposited at the interface, evaporation heat loss;
       - Boussinesq buoyancy.

@@ -1,6 +1,6 @@
 #pragma once
 // Conservation ledger of metal mass, enthalpy and momentum across the particle-continuum
-// coupling (issue 5; thesis 2.3). Every step the solver books where each amount is:
+// coupling (Codina2019 §2.3). Every step the solver books where each amount is:
 //   stored    - in particles (from the exchange records), in the continuum (sum over cells),
 //               pending insertion (powder scheduled but not yet inserted);
 //   exchanged - handed from particles to the continuum (melt, minus heat and impulse taken);
@@ -9,14 +9,14 @@
 //               external sources (laser, gravity, walls) into the continuum or the particles.
 // end_step() reduces the bookings over the communicator and evaluates the balances.
 //
-// Relative balance errors, thesis eq. 2.20 (mass), 2.26 (energy), 2.36 (momentum):
+// Relative balance errors, Codina2019 eq. 2.20 (mass), 2.26 (energy), 2.36 (momentum):
 //   relativeError = (X_sources - (X_new - X_old)) / X_new
-// i.e. the thesis normalises by the NEW total of the continuum (the VOF domain) at the end of
+// i.e. Codina2019 normalises by the NEW total of the continuum (the VOF domain) at the end of
 // the step, signed, without absolute value; its sources are phase change + boundaries. We
 // evaluate exactly that for the continuum ('continuum' errors, sources = exchange + in - out +
 // continuum sources) and the same form for the whole system particles + continuum + pending
 // ('system' errors, sources = in - out - lost + feed + all external sources), where the
-// particle-to-continuum exchange cancels. The thesis' X_new can be ~0 (momentum of a gas at
+// particle-to-continuum exchange cancels. Codina2019's X_new can be ~0 (momentum of a gas at
 // rest), so the denominator is max(|X_new|, scale), scale = set_reference_scale() or, by
 // default, the largest |system total| seen so far for that component, for momentum the largest
 // momentum magnitude (an x-momentum error is measured against the momentum present, not
@@ -43,16 +43,16 @@ namespace meltdem::coupling {
 
 // Booking categories (one compensated sum per category and component).
 enum Category : int {
-  kParticles = 0,      // stored in particles at the end of the step
-  kContinuum,          // stored in the continuum at the end of the step
-  kPending,            // stored in particles pending insertion at the end of the step
-  kExchange,           // particles -> continuum over the step (net)
-  kBoundaryIn,         // into the continuum through its boundaries over the step
-  kBoundaryOut,        // out of the continuum through its boundaries over the step (>= 0 for mass)
-  kLost,               // carried out by particles leaving the mesh over the step (outflow)
-  kFeed,               // new powder added to the pending store over the step
-  kContinuumSource,    // external sources into the continuum (laser heat, gravity, ...)
-  kParticleSource,     // external sources into the particles (gravity, walls, laser, ...)
+  kParticles = 0,    // stored in particles at the end of the step
+  kContinuum,        // stored in the continuum at the end of the step
+  kPending,          // stored in particles pending insertion at the end of the step
+  kExchange,         // particles -> continuum over the step (net)
+  kBoundaryIn,       // into the continuum through its boundaries over the step
+  kBoundaryOut,      // out of the continuum through its boundaries over the step (>= 0 for mass)
+  kLost,             // carried out by particles leaving the mesh over the step (outflow)
+  kFeed,             // new powder added to the pending store over the step
+  kContinuumSource,  // external sources into the continuum (laser heat, gravity, ...)
+  kParticleSource,   // external sources into the particles (gravity, walls, laser, ...)
   kCategories
 };
 
@@ -63,10 +63,10 @@ struct LedgerStep {
   std::int64_t step = 0;
   double time = 0.0, dt = 0.0;
   std::int64_t particles = 0, lost_particles = 0;  // counts this step (global)
-  Amounts booked[kCategories] = {};                 // global totals of this step
-  Amounts system_total = {};                        // particles + continuum + pending
-  Amounts continuum_error = {};                     // thesis eq. 2.20 / 2.26 / 2.36, continuum
-  Amounts system_error = {};                        // same form, whole system
+  Amounts booked[kCategories] = {};                // global totals of this step
+  Amounts system_total = {};                       // particles + continuum + pending
+  Amounts continuum_error = {};                    // Codina2019 eq. 2.20 / 2.26 / 2.36, continuum
+  Amounts system_error = {};                       // same form, whole system
   Amounts cumulative_continuum_error = {};
   Amounts cumulative_system_error = {};
   Amounts cumulative_boundary_out = {}, cumulative_lost = {}, cumulative_boundary_in = {};

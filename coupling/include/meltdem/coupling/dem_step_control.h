@@ -1,5 +1,5 @@
 #pragma once
-// Step control and pop-corn measure for DEM (thesis eq. 3.1-3.4 and section 3.2.1):
+// Step control and pop-corn measure for DEM (Codina2019 eq. 3.1-3.4 and §3.2.1):
 // the bounds fix powder/dt and compute powder/overlap evaluate.
 
 namespace meltdem::coupling {

@@ -54,8 +54,9 @@ SampledFluid finish_sample(const double *sums);
 class MeshFluidProvider : public FluidStateProvider {
  public:
   MeshFluidProvider(const DistributionMesh &mesh, DistributionModel model, const CellFluidFields &fields,
-                    const double *radii)
-      : mesh_(mesh), model_(model), fields_(fields), radii_(radii)
+                    const double *radii) :
+      mesh_(mesh),
+      model_(model), fields_(fields), radii_(radii)
   {
   }
   bool fluid_state(int index, const double x[3], FluidState &out) const override;

@@ -8,11 +8,11 @@
 namespace meltdem::coupling {
 
 struct FluidState {
-  double T = 0.0;               // temperature [K]
-  double k = 0.0;               // thermal conductivity [W/(m K)]
-  double rho = 0.0;             // density [kg/m^3]
-  double mu = 0.0;              // dynamic viscosity [Pa s]
-  double cp = 0.0;              // specific heat capacity [J/(kg K)]
+  double T = 0.0;                 // temperature [K]
+  double k = 0.0;                 // thermal conductivity [W/(m K)]
+  double rho = 0.0;               // density [kg/m^3]
+  double mu = 0.0;                // dynamic viscosity [Pa s]
+  double cp = 0.0;                // specific heat capacity [J/(kg K)]
   double U[3] = {0.0, 0.0, 0.0};  // velocity [m/s]
   SolidSurface solid;             // nearest solid metal of the continuum (if any)
   double heat_source = 0.0;       // power from outside the fluid (laser) absorbed [W]

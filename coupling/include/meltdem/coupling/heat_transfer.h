@@ -1,5 +1,5 @@
 #pragma once
-// Convective heat transfer between a sphere and the surrounding fluid (thesis eq. 2.13).
+// Convective heat transfer between a sphere and the surrounding fluid (Codina2019 eq. 2.13).
 
 namespace meltdem::coupling {
 

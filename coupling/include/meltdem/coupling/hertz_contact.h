@@ -1,5 +1,5 @@
 #pragma once
-// Hertzian contact duration and the DEM time step derived from it (thesis eq. 3.1-3.4).
+// Hertzian contact duration and the DEM time step derived from it (Codina2019 eq. 3.1-3.4).
 
 namespace meltdem::coupling {
 
@@ -14,7 +14,7 @@ double hertz_contact_time(double m_eff, double R_eff, double E_eff, double U_rel
 
 // The shortest contact time of two equal spheres of radius R and density rho
 // (eq. 3.1 with R1 = R2 = R, m = 4/3 pi R^3 rho): t = C R (rho / (E* sqrt(U)))^0.4
-// with C = 2.87 (8 pi^2 / 9)^(1/5) = 4.4311. The thesis prints C = 5.429675 in eq. 3.3,
+// with C = 2.87 (8 pi^2 / 9)^(1/5) = 4.4311. Codina2019 prints C = 5.429675 in eq. 3.3,
 // which does not follow from eq. 3.1; we use eq. 3.1 itself.
 double hertz_contact_time_equal_spheres(double R, double rho, double E_eff, double U_rel);
 

@@ -1,17 +1,17 @@
 #pragma once
-// Laser absorption by powder particles and the shadow they cast on the continuum
-// (issue 5, item 3): particles in the beam absorb their share, and what they intercept
+// Laser absorption by powder particles and the shadow they cast on the continuum:
+// particles in the beam absorb their share, and what they intercept
 // does not reach the melt pool below, so particles + continuum absorb eta P exactly.
 //
-// Beam: the continuum's profile (foam-src/meltdemModels/laserHeatSource, SPH paper eq. 17),
+// Beam: the continuum's profile (foam-src/meltdemModels/laserHeatSource, Fuchs2022 eq. 17),
 // a collimated Gaussian of power P and 1/e^2 radius w,
 //     I(rho) = 2P/(pi w^2) exp(-2 rho^2/w^2),   rho = distance from the axis,
 // with the axis through `centre` along the unit `direction` (from the source into the
 // domain). It has no focus or divergence and comes from infinitely far upstream: every
 // particle is lit whatever its depth. Depth of a point x: (x - centre) . direction.
 // A disk of radius R centred on the axis receives P (1 - exp(-2 R^2/w^2)).
-// Cost: 12 bytes and one init per ray of the n^2 grid, plus ~3 ns per ray inside each
-// particle's disk: 1000 particles R = 0.15..0.4 w at R_min/h = 20: ~14 ms per call.
+// Cost: 12 bytes and one init per ray of the n^2 grid, plus one test per ray inside each
+// particle's disk.
 //
 // Scheme (ray casting, exact balance by construction): the beam's cross-section (the plane
 // normal to the axis through `centre`) is cut into a Cartesian grid of square cells of
@@ -28,11 +28,9 @@
 // (P (1 - erf(sqrt2 extent)^2), 2e-15 P at extent 4), reach the continuum:
 //     transmitted_power = P - intercepted_total,
 //     sum(absorbed) + eta transmitted_power = eta P   (to round-off).
-// Discretisation error (measured, tests/test_laser_shadowing.cpp, doc/coupling_laser_shadowing.rst):
+// Discretisation error (tests/test_laser_shadowing.cpp; values in doc/coupling_laser_shadowing.rst):
 // a particle's share is its disk counted in whole rays, so the error depends on R/h, the
-// rays across its radius. A particle centred on the axis (the grid's symmetric worst
-// case), R = 0.25..1 w: mean / max relative error 1.5 % / 2.3 % at R/h = 5, 0.37 % / 0.55 %
-// at R/h = 20 (the default), 0.04 % / 0.05 % at 40, 0.013 % / 0.06 % at 80 (order ~1.7).
+// rays across its radius, and falls as R/h grows (default R/h = 20).
 // The balance is exact whatever the resolution: only the split between particles and
 // continuum carries that error.
 //
@@ -52,10 +50,10 @@
 namespace meltdem::coupling {
 
 struct GaussianBeam {
-  double power = 0.0;                          // P [W] >= 0
-  double absorptivity = 1.0;                   // eta in [0, 1]
-  double radius = 0.0;                         // w, 1/e^2 radius [m] > 0
-  Eigen::Vector3d centre = Eigen::Vector3d::Zero();            // a point on the axis [m]
+  double power = 0.0;                                           // P [W] >= 0
+  double absorptivity = 1.0;                                    // eta in [0, 1]
+  double radius = 0.0;                                          // w, 1/e^2 radius [m] > 0
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();             // a point on the axis [m]
   Eigen::Vector3d direction = Eigen::Vector3d(0.0, 0.0, -1.0);  // source -> domain, non-zero
 };
 
@@ -67,10 +65,10 @@ struct BeamParticle {
 struct ShadowOptions {
   // ray spacing h = min(w / cells_per_radius, R_min / cells_per_particle_radius), R_min the
   // smallest particle in the sampled square: a particle's share is its disk counted in
-  // whole cells, so its error depends on R/h (~0.5 % at R/h = 20, see above)
-  double cells_per_radius = 50.0;          // rays per beam radius w (> 0)
+  // whole cells, so its error depends on R/h (see above)
+  double cells_per_radius = 50.0;           // rays per beam radius w (> 0)
   double cells_per_particle_radius = 20.0;  // rays per particle radius (>= 0, 0: off)
-  double extent = 4.0;                     // half-width of the sampled square in beam radii (> 0)
+  double extent = 4.0;                      // half-width of the sampled square in beam radii (> 0)
   // at most max_cells rays: cells_per_radius beyond it throws; the particle criterion is
   // capped there (the grid then has max_cells rays, grid.h says which spacing was used)
   std::int64_t max_cells = 4'000'000;  // 12 bytes per ray
@@ -80,12 +78,12 @@ struct ShadowOptions {
 // that reach the continuum.
 struct ShadowGrid {
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();
-  Eigen::Vector3d direction = Eigen::Vector3d::Zero();  // unit
+  Eigen::Vector3d direction = Eigen::Vector3d::Zero();                       // unit
   Eigen::Vector3d u = Eigen::Vector3d::Zero(), v = Eigen::Vector3d::Zero();  // plane basis
-  double h = 0.0;         // cell side [m]
-  double half_width = 0;  // extent w [m]
-  int n = 0;              // cells per side
-  std::vector<double> g;  // 1D cell fractions, ray (i, j) carries P g[i] g[j]
+  double h = 0.0;                                                            // cell side [m]
+  double half_width = 0;                                                     // extent w [m]
+  int n = 0;                                                                 // cells per side
+  std::vector<double> g;            // 1D cell fractions, ray (i, j) carries P g[i] g[j]
   std::vector<double> entry_depth;  // per ray (j n + i): first sphere entry, +inf if none
   std::vector<int> owner;           // per ray: index of the particle hit first, -1 if none
 };

@@ -1,13 +1,13 @@
 #pragma once
 // Particle <-> cell exchange when the particles and the mesh are decomposed differently
-// (issue 5: LAMMPS's decomposition need not match the mesh's). Every rank holds some
+// (LAMMPS's decomposition need not match the mesh's). Every rank holds some
 // particles (its DEM sub-domain) and some cells (its mesh sub-domain). locate() gathers
 // the particles' shapes on every rank; each rank computes the raw weights of every
 // particle over ITS cells, and the weights are normalised with the global sum, so a
 // particle spanning a processor boundary is split exactly as in a serial run:
 //   centre     : the cell holding the centre (the lowest rank that finds it owns it);
 //   neighbours : that cell plus the cells across its faces the particle reaches
-//                (thesis fig. 3.9 / eq. 3.7, volume-weighted). Faces are recognised from
+//                (Codina2019 fig. 3.9 / eq. 3.7, volume-weighted). Faces are recognised from
 //                cell bounding boxes (a cell whose box shares a face with the centre
 //                cell's box), so a neighbour on another rank needs no face addressing:
 //                exact for axis-aligned hexahedral meshes (blockMesh, snappy background),
@@ -113,8 +113,8 @@ class ParallelExchange {
   int rank_ = 0, size_ = 1;
   std::vector<ParticleShape> all_;  // every rank's particles, in rank order
   std::vector<int> counts_, displs_;
-  std::size_t offset_ = 0;           // first global index of this rank's particles
-  std::vector<char> inside_;         // per global particle
+  std::size_t offset_ = 0;    // first global index of this rank's particles
+  std::vector<char> inside_;  // per global particle
   // CSR of this rank's weights: particle g owns [start_[g], start_[g+1])
   std::vector<std::size_t> start_;
   std::vector<long> cells_;

@@ -1,21 +1,19 @@
 #pragma once
 // Particle -> cell distribution of the extensive quantities a particle hands to the
-// continuum (mass, enthalpy, momentum, absorbed heat). Thesis 3.2.3: depositing a whole
+// continuum (mass, enthalpy, momentum, absorbed heat). Codina2019 §3.2.3: depositing a whole
 // grain into the one cell holding its centre spikes density/velocity/enthalpy there and
-// collapses the fluid time step (fig. 3.7) once cells are as small as grains, so the
+// collapses the fluid time step (Codina2019 fig. 3.7) once cells are as small as grains, so the
 // share can be spread over several cells. Three models:
 //   centre     : everything to the cell holding the particle centre;
-//   neighbours : centre cell + occupied face neighbours (thesis fig. 3.9), volume-weighted
-//                as thesis eq. 3.7  w_i = V_i / sum_j V_j;
+//   neighbours : centre cell + occupied face neighbours (Codina2019 fig. 3.9), volume-weighted
+//                as Codina2019 eq. 3.7  w_i = V_i / sum_j V_j;
 //   overlap    : w_i = |sphere ∩ cell_i| / sum_j |sphere ∩ cell_j| (powder-bed regime,
 //                cells 3-10x smaller than grains); the part outside the mesh is dropped
 //                and the rest renormalised.
 // Weights are normalised so that their (exact) sum is 1 to round-off: the caller's
 // distributed quantity q * w_i sums back to q to round-off.
-// Cost per particle (one core, Release, uniform grid; test CostPerParticleNote): centre
-// 0.04-0.07 us; neighbours 0.13-0.2 us; overlap 0.07 / 0.18 / 0.5 / 1.8 / 6.6 ms at 0.5 / 1 /
-// 2 / 4 / 8 cells per diameter (4 / 8 / 22 / 85 / 444 cells), ~15 us per cell the sphere
-// surface cuts: cache the weights of particles that did not move a cell fraction if needed.
+// Cost per particle: the CostPerParticleNote test prints it. `overlap` costs per cell the
+// sphere surface cuts: cache the weights of particles that did not move a cell fraction if needed.
 #include <Eigen/Core>
 
 #include <string>
@@ -29,9 +27,9 @@ namespace meltdem::coupling {
 class DistributionMesh {
  public:
   struct Face {
-    long neighbour;         // cell across the face
-    Eigen::Vector3d centre; // face centre
-    Eigen::Vector3d normal; // unit normal pointing out of the owner cell
+    long neighbour;          // cell across the face
+    Eigen::Vector3d centre;  // face centre
+    Eigen::Vector3d normal;  // unit normal pointing out of the owner cell
   };
   virtual ~DistributionMesh() = default;
   // cell holding point p, -1 when p is outside the mesh
@@ -84,8 +82,8 @@ struct CellWeight {
 // cleared `out`. Returns false (out empty) when the centre lies outside the mesh, or,
 // for `overlap`, when nothing of the sphere lies inside it: the caller books outflow.
 // Throws std::invalid_argument for r <= 0 or a non-finite centre/radius.
-bool distribute_particle(const DistributionMesh &mesh, DistributionModel model, const Eigen::Vector3d &c,
-                         double r, std::vector<CellWeight> &out);
+bool distribute_particle(const DistributionMesh &mesh, DistributionModel model, const Eigen::Vector3d &c, double r,
+                         std::vector<CellWeight> &out);
 
 // Raw (unnormalised) overlap weights |sphere ∩ cell| of the cells of `mesh` the sphere
 // touches, appended to `out` (the `overlap` model before normalisation).
@@ -98,8 +96,7 @@ void append_overlap_volumes(const DistributionMesh &mesh, const Eigen::Vector3d 
 // between the kinks of A (where the slice circle meets a rectangle edge or corner), each under
 // x = a + (b-a)(1 - cos(pi u))/2 (smooths the square-root behaviour at the kinks), by 16-point
 // Gauss-Legendre with adaptive bisection in u to 1e-14 r^3 (a slice circle that barely clears
-// an edge needs it). Measured: 1e-15 relative on whole spheres, < 1e-12 on caps/octants.
-// Cost ~10-15 us per cut cell (see the CostPerParticleNote test).
+// an edge needs it). Accuracy and cost: tests/test_particle_distribution.cpp.
 double sphere_box_overlap(const Eigen::Vector3d &c, double r, const Eigen::Vector3d &lo, const Eigen::Vector3d &hi);
 
 // Area of the disk y^2 + z^2 <= R^2 (centred at 0) with y <= b, z <= c (closed form).

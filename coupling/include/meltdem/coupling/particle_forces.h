@@ -1,5 +1,5 @@
 #pragma once
-// Fluid forces on one particle (thesis eq. 2.14 with the fluid viscosity kept):
+// Fluid forces on one particle (Codina2019 eq. 2.14 with the fluid viscosity kept):
 //   drag      F_d = beta (U_f - U_p), beta = 3 pi mu_f d (Cd Re / 24)  (drag.h)
 //   buoyancy  F_b = -rho_f V_p g = -(rho_f / rho_p) m_p g  (gravity itself is fix gravity's)
 
@@ -19,8 +19,8 @@ struct ParticleForces {
 double slip_reynolds(const FluidState &fluid, const double v[3], double d);
 
 // v: particle velocity, d: diameter, g: gravitational acceleration vector (zero: none)
-ParticleForces drag_and_buoyancy(DragModel model, const FluidState &fluid, const double v[3],
-                                 double d, const double g[3]);
+ParticleForces drag_and_buoyancy(DragModel model, const FluidState &fluid, const double v[3], double d,
+                                 const double g[3]);
 
 // Drag between a particle (mass m) and the fluid parcel it exchanges momentum with (mass M,
 // FluidState::mass; M <= 0: unbounded) over a step dt, as two bodies: the coefficient to use

@@ -1,5 +1,5 @@
 #pragma once
-// Heating and melting of one particle over one time step (thesis eq. 2.3, 2.9, 2.13).
+// Heating and melting of one particle over one time step (Codina2019 eq. 2.3, 2.9, 2.13).
 //
 // State: specific enthalpy h [J/kg], mass m, diameter d. Below melting T = h / cp; once
 // h reaches cp Tm the particle stays at Tm and every joule of heat melts mass, which is
@@ -53,10 +53,10 @@ struct MeltStepResult {
 MeltStepResult absorb_heat(const MeltMaterial &mat, double h, double m, double d, double energy);
 
 // One step of length dt with k_nu = k_f Nu [W/(m K)] and fluid temperature T_fluid.
-MeltStepResult heat_melt_step(const MeltMaterial &mat, double h, double m, double d, double k_nu,
-                              double T_fluid, double dt);
+MeltStepResult heat_melt_step(const MeltMaterial &mat, double h, double m, double d, double k_nu, double T_fluid,
+                              double dt);
 
-// --- The explicit exchange and the cells that pay for it (issue 6: a particle melting within
+// --- The explicit exchange and the cells that pay for it (a particle melting within
 // one step). Over a fluid step each particle heats with the fluid frozen; its cells lose that
 // heat. A cell of heat capacity C = rho cp V [J/K] feeding particles of conductance G [W/K]
 // loses G (Tf - Tp) dt, so on its own it passes the particles' temperature once dt > C / G and

@@ -1,4 +1,4 @@
-// Particle size distributions for powder insertion (thesis 3.2.2, chapter 5 "custom size
+// Particle size distributions for powder insertion (Codina2019 §3.2.2, ch. 5 "custom size
 // distributions"): truncated number CDFs, inverse-CDF sampling, volume->number weighting,
 // and a seeded random generator whose state can be saved in a restart file.
 #pragma once
@@ -49,10 +49,10 @@ class SizeDistribution {
   bool is_by_volume() const { return byvolume_; }
   double dmin() const { return lo_; }
   double dmax() const { return hi_; }
-  double cdf(double d) const;       // number CDF, 0 below dmin, 1 at and above dmax
-  double sample(double u) const;    // inverse number CDF, u in (0,1)
+  double cdf(double d) const;     // number CDF, 0 below dmin, 1 at and above dmax
+  double sample(double u) const;  // inverse number CDF, u in (0,1)
   double draw(Rng64 &rng) const { return sample(rng.uniform()); }
-  double mean_cube() const;         // E[d^3] of the number distribution (volume per particle * 6/pi)
+  double mean_cube() const;  // E[d^3] of the number distribution (volume per particle * 6/pi)
 
  private:
   // a parametric distribution (two parameters) truncated to [dlo, dhi]
@@ -65,7 +65,7 @@ class SizeDistribution {
   bool byvolume_ = false;
   double p1_ = 0.0, p2_ = 0.0;  // kind parameters
   double lo_ = 0.0, hi_ = 0.0;
-  double glo_ = 0.0, ghi_ = 1.0;  // base_cdf at lo/hi
+  double glo_ = 0.0, ghi_ = 1.0;   // base_cdf at lo/hi
   std::vector<double> td_, tcum_;  // table / tabulated number CDF (by volume) nodes
 };
 

@@ -1,11 +1,11 @@
 #pragma once
 // Particles meeting solid metal of the continuum (substrate, solidified track): the solid
-// repels them as a granular wall (issue 5 item 3). The coupling finds, once per coupling
+// repels them as a granular wall. The coupling finds, once per coupling
 // interval, the surface of the solid metal nearest to each particle from the cells that
 // are solid (metal fraction x (1 - liquid fraction) >= 1/2) and hands it to the particle
 // as a plane (point, outward normal). The DEM side then applies, every sub-step, the same
 // Hertz contact with Tsuji delta^(1/4) damping as pair granular/powder and
-// wall/gran/powder (thesis eq. 3.5):
+// wall/gran/powder (Codina2019 eq. 3.5):
 //   F = (4/3 E* sqrt(R delta) delta - alpha sqrt(m 4/3 E* sqrt(R delta)) v.n) n,
 // delta = R - (x - p).n; no friction (the surface is a cell-face staircase, not a wall
 // with a tangential reference).

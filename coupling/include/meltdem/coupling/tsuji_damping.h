@@ -1,7 +1,7 @@
 #pragma once
 // Tsuji's polynomial between the coefficient of restitution e and the damping
 // coefficient alpha of the Hertz contact eta_N = alpha sqrt(m* k_N) delta^(1/4)
-// (thesis eq. 3.5; Tsuji, Tanaka & Ishida 1992). This is the map LAMMPS's
+// (Codina2019 eq. 3.5; Tsuji1992). This is the map LAMMPS's
 // pair_style granular applies for 'damping tsuji'.
 
 namespace meltdem::coupling {
