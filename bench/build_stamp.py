@@ -7,7 +7,8 @@ import time
 
 def build_stamp(root, bin_dir):
     """git commit of the sources and modification time of the meltdemFoam used"""
-    head = subprocess.run(["git", "-C", root, "rev-parse", "--short", "HEAD"], capture_output=True, text=True).stdout.strip()
+    head = subprocess.run(["git", "-C", root, "rev-parse", "--short", "HEAD"],
+                          capture_output=True, text=True).stdout.strip()
     dirty = subprocess.run(["git", "-C", root, "status", "--porcelain", "--untracked-files=no", "coupling",
                             "foam-src", "lammps-src"], capture_output=True, text=True).stdout.strip()
     mtime = time.strftime("%Y-%m-%d %H:%M:%S UTC", time.gmtime(os.path.getmtime(os.path.join(bin_dir, "meltdemFoam"))))

@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """Cells per particle diameter x particle -> cell model on a COUPLED case: wall time vs the
-error of the drag force and of the heat a particle takes from the gas (issue 6, speed-accuracy).
+error of the drag force and of the heat a particle takes from the gas (speed vs accuracy).
 
     /usr/bin/python3 bench/cells_per_diameter.py [--bin build/bin] [--cpd 0.125,0.25,0.5,1,2,4,8]
         [--models centre,neighbours,overlap] [--t-end 1e-3] [--max-steps 5000] [--max-run 300]
@@ -14,12 +14,12 @@ its own disturbance a particle samples: it sees a smaller slip velocity and a sm
 temperature difference than the undisturbed gas (the reference) and takes too little drag and
 heat. (bench/distribution_models.* has the standalone weights; this is their coupled effect.)
 
-Case (tests/coupling/coupledcase.py channel_case, its mesh regraded): a steel-like grain
+Case (meltdem.case.coupled.channel_case, its mesh regraded): a steel-like grain
 d = 100 um (7800 kg/m3; cp 5000 J/kg K, ten times steel, so that it warms only ~0.5 % in the
 run and its heat rate stays steady; Tm 5000 K: no melting) HELD in the middle of a closed
 cube of gas (no time integration, `velocity set 0 -0.1 0`: it slips through the gas at
 0.1 m/s and stays where it is, so the mesh around it is the same all run). Gas at rest at
-1000 K, the particle at 300 K. The gas is artificial (like the thesis's argon, chosen so that
+1000 K, the particle at 300 K. The gas is artificial (like Codina2019's argon, chosen so that
 the near field is steady in a hundred steps): rho 0.12, mu 1.8e-4 (nu 1.5e-3 m2/s), cp 1000,
 k 0.18 (Pr 1); Re = 6.7e-3 (Stokes regime: Cd Re / 24 = 1.006), Nu = 2.05.
 Cube 40 d = 4 mm; slip walls, top fixed U = 0 / T = 1000 K, bottom p = 0. Mesh: a uniform
@@ -59,25 +59,23 @@ import os
 import re
 import shutil
 import subprocess
-import sys
 import tempfile
 import time
 
 import numpy as np
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from build_stamp import build_stamp, stamp_line  # noqa: E402
+from meltdem import paths
+from meltdem.case import coupled as cc
+from meltdem.case import foam as fc
+
+from build_stamp import build_stamp, stamp_line
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 os.environ.setdefault("MELTDEM_SOURCE_DIR", ROOT)
-sys.path.insert(0, os.path.join(ROOT, "tests", "support"))
-sys.path.insert(0, os.path.join(ROOT, "tests", "coupling"))
-import coupledcase as cc  # noqa: E402
-import foamcase as fc  # noqa: E402
 
 ap = argparse.ArgumentParser()
-ap.add_argument("--bin", default=os.environ.get("MELTDEM_BIN", os.path.join(ROOT, "build", "bin")))
+ap.add_argument("--bin", default=paths.bin_dir())
 ap.add_argument("--cpd", default="0.125,0.25,0.5,1,2,4,8", help="cells per particle diameter")
 ap.add_argument("--models", default="centre,neighbours,overlap")
 ap.add_argument("--t-end", type=float, default=1e-3)
@@ -142,7 +140,7 @@ def graded_mesh(case, c):
     txt = open(p).read()
     txt, k = re.subn(r"hex \(0 1 2 3 4 5 6 7\) \(\d+ \d+ \d+\) simpleGrading \(1 1 1\)",
                      f"hex (0 1 2 3 4 5 6 7) ({nc + 2 * n} {nc + 2 * n} {nc + 2 * n}) simpleGrading ({g} {g} {g})", txt)
-    assert k == 1, "the blockMeshDict of coupledcase.box_mesh changed"
+    assert k == 1, "the blockMeshDict of meltdem.case.coupled.box_mesh changed"
     open(p, "w").write(txt)
     fc.run(["blockMesh"], case, "log.blockMesh")
     return (nc + 2 * n) ** 3, h, outer + (nc // 2 + 0.5 + OFFSET) * h
@@ -157,7 +155,7 @@ thermo 1
 
 
 def build(case, model, c, dt=DT):
-    """The channel_case of coupledcase with the held grain, then the graded mesh."""
+    """The channel_case of meltdem.case.coupled with the held grain, then the graded mesh."""
     centre = W / 2  # placeholder; the grain's position is set once the mesh is known
     particle = dict(d=D, rho=RHO_P, cp=CP_P, Tm=5000.0, L=2.7e5, T0=T_P, x=centre, y=centre, z=centre,
                     v=(0.0, -V_SLIP, 0.0), held=True)
@@ -277,6 +275,7 @@ Q_nu2 = 2 * GAS["k"] * math.pi * D * (GAS["T"] - T_P)
 print(f"reference (standalone ambient): drag {F_ref:.6g} N (Stokes {F_stokes:.6g}), heat rate {Q_ref:.6g} W "
       f"(Nu = 2 at T0: {Q_nu2:.6g}); Re {re_p:.3g}", flush=True)
 
+
 def nice_step(t):
     """t rounded down to two significant digits"""
     k = math.floor(math.log10(t)) - 1
@@ -286,9 +285,9 @@ def nice_step(t):
 def report(r):
     c, model = r["c"], r["model"]
     if r["ok"]:
-            print(f"  c {c:g} {model:10s}: {r['cells']:6d} cells, {r['wall']:7.2f} s, drag {r['F']:.5g} N "
-                  f"({r['F'] / F_ref - 1:+.2%}), heat {r['Q']:.5g} W ({r['Q'] / Q_ref - 1:+.2%}), "
-                  f"gas {r['T_min']:.4g}-{r['T_max']:.4g} K", flush=True)
+        print(f"  c {c:g} {model:10s}: {r['cells']:6d} cells, {r['wall']:7.2f} s, drag {r['F']:.5g} N "
+              f"({r['F'] / F_ref - 1:+.2%}), heat {r['Q']:.5g} W ({r['Q'] / Q_ref - 1:+.2%}), "
+              f"gas {r['T_min']:.4g}-{r['T_max']:.4g} K", flush=True)
     elif r.get("estimate"):
         print(f"  c {c:g} {model:10s}: not run: {r['why']}", flush=True)
     else:
@@ -329,12 +328,14 @@ for c in [float(x) for x in args.cpd.split(",")]:
 os.makedirs(args.out, exist_ok=True)
 md = os.path.join(args.out, "cells_per_diameter.md")
 lines = ["# Cells per particle diameter x distribution model, coupled: cost vs accuracy", "",
-         "Generated by bench/cells_per_diameter.py" + (" --quick (smoke test: not the documented result)"
-                                                        if args.quick else "")
+         "Generated by bench/cells_per_diameter.py"
+         + (" --quick (smoke test: not the documented result)" if args.quick else "")
          + ". Serial, shared 2-core machine under load from other jobs (load average 6-9 during the run): "
-         "absolute wall times are loaded-machine times (+-30 %), compare ratios within the table. Build: " + stamp_line(ROOT, args.bin, STAMP) + ".", "",
+         "absolute wall times are loaded-machine times (+-30 %), compare ratios within the table. Build: "
+         + stamp_line(ROOT, args.bin, STAMP) + ".", "",
          f"A grain d = {D * 1e6:g} um held in gas at rest, slipping at {V_SLIP:g} m/s (Re {re_p:.2g}), {T_P:g} K in "
-         f"{GAS['T']:g} K gas (nu = alpha = {GAS['mu'] / GAS['rho']:.2g} m2/s, rho cp = {GAS['rho'] * GAS['cp']:g} J/m3 K); "
+         f"{GAS['T']:g} K gas (nu = alpha = {GAS['mu'] / GAS['rho']:.2g} m2/s, "
+         f"rho cp = {GAS['rho'] * GAS['cp']:g} J/m3 K); "
          f"cube {W / D:g} d, graded mesh with a uniform core of cell size d / c around the grain; "
          f"{args.t_end * 1e3:g} ms, fluid step = DEM step = {DT * 1e6:g} us; results = means over the last "
          f"{WINDOW:.0%} of the run. V_p / V_cell = (pi / 6) c^3.",
@@ -342,13 +343,13 @@ lines = ["# Cells per particle diameter x distribution model, coupled: cost vs a
          f"{F_ref:.6g} N (analytic Stokes 3 pi mu d v = {F_stokes:.6g} N), heat rate {Q_ref:.6g} W "
          f"(Nu = 2 at the initial temperature difference: {Q_nu2:.6g} W).", "",
          "The fluid step is 10 us; where the coupling's bound check stops a run (the gas left the range of gas "
-         "and grain temperatures: the explicit heat exchange overshoots), the run is repeated at a fluid step of half "
-         "the heat exchange time the check names (two digits, rounded down) if that takes at most "
+         "and grain temperatures: the explicit heat exchange overshoots), the run is repeated at a fluid step "
+         "of half the heat exchange time the check names (two digits, rounded down) if that takes at most "
          f"{args.max_steps} steps and an estimated {args.max_run:g} s; else its cost is estimated (start-up + cells "
          "x steps x the cost per cell-step of the largest run before it).", "",
-         "| cells / d | model | cells | V_p / V_cell | fluid step (s) | fluid steps | wall (s) | exchange (s) | drag (N) | "
-         "reference (N) | error | heat rate (W) | reference (W) | error | gas T min / max (K) | drift of the last "
-         "two windows (drag / heat) |", "|" + "---|" * 16]
+         "| cells / d | model | cells | V_p / V_cell | fluid step (s) | fluid steps | wall (s) | exchange (s) | "
+         "drag (N) | reference (N) | error | heat rate (W) | reference (W) | error | gas T min / max (K) | "
+         "drift of the last two windows (drag / heat) |", "|" + "---|" * 16]
 for r in out:
     vr = math.pi / 6 * r["c"] ** 3
     head = f"| {r['c']:g} | {r['model']} | {r['cells']} | {vr:.3g} | {r['dt']:.2g} |"
@@ -363,7 +364,8 @@ for r in out:
         lines.append(
             f"{head} {r['steps']} | {r['wall']:.1f} | {r['exchange']:.2f} | {r['F']:.5g} | {F_ref:.5g} | "
             f"{r['F'] / F_ref - 1:+.1%} | {r['Q']:.5g} | {Q_ref:.5g} | {r['Q'] / Q_ref - 1:+.1%} | "
-            f"{r['T_min']:.4g} / {r['T_max']:.4g} | {r['F'] / r['F_before'] - 1:+.1e} / {r['Q'] / r['Q_before'] - 1:+.1e} |")
+            f"{r['T_min']:.4g} / {r['T_max']:.4g} | {r['F'] / r['F_before'] - 1:+.1e} / "
+            f"{r['Q'] / r['Q_before'] - 1:+.1e} |")
 lines += ["", "## Summary", ""]
 for model in args.models.split(","):
     rs = [r for r in out if r["model"] == model]

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Collision resolution steps S of fix powder/dt (thesis collisionResolutionSteps): cost
+"""Collision resolution steps S of fix powder/dt (Codina2019 collisionResolutionSteps): cost
 against accuracy, so that a user can pick S.
 
     /usr/bin/python3 bench/collision_resolution_sweep.py [--bin build/bin] [--S 2,3,5,7,10,15,20,30,40]
@@ -11,23 +11,23 @@ For each S (dt = t_c / S from fix powder/dt, eq. 3.1-3.3):
   * the same collision with damping tsuji e = 0.5 (granular/powder's exact e -> alpha
     map): restitution error against the prescribed 0.5;
   * a small pour: the CI powder bed of examples/powder-bed (0.30 x 0.30 mm floor,
-    153 particles, thesis table 4.3 settings), its first 1 ms (injection at -2 m/s and
+    153 particles, Codina2019 table 4.3 settings), its first 1 ms (injection at -2 m/s and
     the impacts on the floor): wall time (serial), steps, largest overlap/R of any contact
     and largest particle speed (compute powder/overlap every 20 steps, also at S = 10).
 Writes bench/collision_resolution_sweep.md and bench/collision_resolution_sweep.png.
 """
 import argparse
-import math
 import os
 import re
 import subprocess
-import sys
 import tempfile
 import time
 
+from meltdem.testing.dem import delta_max, mass, t_contact, two_spheres
+from meltdem.testing.lammps_run import run, thermo_runs
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
-sys.path.insert(0, os.path.join(ROOT, "tests", "dem", "dt"))
 
 ap = argparse.ArgumentParser()
 ap.add_argument("--bin", default=os.path.join(ROOT, "build", "bin"))
@@ -35,7 +35,6 @@ ap.add_argument("--S", default="2,3,5,7,10,15,20,30,40")
 args = ap.parse_args()
 os.environ.setdefault("MELTDEM_BIN", os.path.abspath(args.bin))
 os.environ.setdefault("MELTDEM_SOURCE_DIR", ROOT)
-from dt_common import delta_max, mass, run, t_contact, thermo_runs, two_spheres  # noqa: E402
 
 LMP = os.path.join(os.path.abspath(args.bin), "meltdem-lmp")
 R, U, E_PRESCRIBED = 15e-6, 2.0, 0.5

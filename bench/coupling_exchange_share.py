@@ -1,12 +1,12 @@
 #!/usr/bin/python3
 """Share of the coupled meltdemFoam + LAMMPS step time spent in the particle <-> cell
-exchange (issue 5 item 5; target <= 5 %), a few thousand particles, serial and np 2.
+exchange (target <= 5 %), a few thousand particles, serial and np 2.
 
     /usr/bin/python3 bench/coupling_exchange_share.py [--bin build/bin] [--np 1,2]
         [--models centre,neighbours,overlap] [--scenarios granular,ballistic] [--steps 60] [--repeat 2]
         [--per-axis 15] [--cells 20] [--quick] [--out bench] [--keep]
 
-Case (written with tests/coupling/coupledcase.py): a closed 1 x 1 x 1 mm box of quiescent
+Case (written with meltdem.case.coupled): a closed 1 x 1 x 1 mm box of quiescent
 argon-like gas at 1500 K (rho 0.32, mu 5.6e-5, cp 520, k 0.06; no-slip adiabatic walls),
 --cells^3 hexahedra (20^3: h = 50 um), energy on, flow on, fluid step fixed at 1 us
 (maxDeltaT; the quiescent gas never reaches the Courant limit). The particles: a simple
@@ -42,25 +42,23 @@ smoke test.
 """
 import argparse
 import os
-import re
 import shutil
 import subprocess
-import sys
 import tempfile
 import time
 
 import numpy as np
 
+from meltdem import paths
+from meltdem.case import coupled as cc
+from meltdem.case import foam as fc
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 os.environ.setdefault("MELTDEM_SOURCE_DIR", ROOT)
-sys.path.insert(0, os.path.join(ROOT, "tests", "support"))
-sys.path.insert(0, os.path.join(ROOT, "tests", "coupling"))
-import coupledcase as cc  # noqa: E402
-import foamcase as fc  # noqa: E402
 
 ap = argparse.ArgumentParser()
-ap.add_argument("--bin", default=os.environ.get("MELTDEM_BIN", os.path.join(ROOT, "build", "bin")))
+ap.add_argument("--bin", default=paths.bin_dir())
 ap.add_argument("--np", default="1,2")
 ap.add_argument("--models", default="centre,neighbours,overlap")
 ap.add_argument("--scenarios", default="granular,ballistic")
@@ -156,7 +154,7 @@ thermo          1000
 
 
 def timed_solver(case, np_):
-    """Runs the solver as coupledcase.run_solver does, writing log.meltdemFoam, and returns
+    """Runs the solver as meltdem.case.coupled.run_solver does, writing log.meltdemFoam, and returns
     the wall-clock time since the launch at which each step's ExecutionTime line arrived
     (the solver flushes it at the end of every step) and the run's total wall time."""
     cmd = [fc.solver()]
@@ -238,7 +236,8 @@ for r in results:
     r.update(share_ex=100 * r["exchange"] / loop, share_lmp=100 * r["lammps"] / loop, share_rest=100 * rest / loop)
     rows.append(f"| {r['scenario']} | {r['model']} | {r['np']} | {r['particles']} | {r['dem_steps']} | {loop:.3f} | "
                 f"{loop / (args.steps - 1) * 1e3:.2f} | {r['exchange']:.3f} | **{r['share_ex']:.2f} %** | "
-                f"{r['share_lmp']:.1f} % | {r['share_rest']:.1f} % | {'met' if r['share_ex'] <= TARGET else 'MISSED'} |")
+                f"{r['share_lmp']:.1f} % | {r['share_rest']:.1f} % | "
+                f"{'met' if r['share_ex'] <= TARGET else 'MISSED'} |")
 table = "\n".join(rows)
 print()
 print(table)
@@ -286,7 +285,8 @@ with open(os.path.join(args.out, "coupling_exchange_share.md"), "w") as f:
             f"{CP_G:g}, k {K_G:g}), {args.cells}^3 hexahedra (h = {L / args.cells * 1e6:g} µm), energy and flow on, "
             f"fluid step {DT:g} s for {args.steps} steps; {args.per_axis}^3 = {args.per_axis ** 3} steel particles "
             f"(d uniform {D_LO * 1e6:g}–{D_HI * 1e6:g} µm, rho {RHO_P:g}, cp {CP_P:g}) on a simple cubic lattice "
-            f"filling [{FILL[0] * 1e3:g}, {FILL[1] * 1e3:g}] mm³ (no centre on a cell face), created at {T0:g} K, `fix powder/melt` Tmelt "
+            f"filling [{FILL[0] * 1e3:g}, {FILL[1] * 1e3:g}] mm³ (no centre on a cell face), created at {T0:g} K, "
+            "`fix powder/melt` Tmelt "
             f"{TM:g} K above the gas: the particles heat (Ranz–Marshall with the local gas), feel drag and buoyancy "
             "and fall under `fix gravity`, but none melts, so every particle samples the fluid and deposits heat and "
             "momentum every step while no metal is handed over. LAMMPS box 0.1 mm beyond the mesh.\n\n")
@@ -298,7 +298,8 @@ with open(os.path.join(args.out, "coupling_exchange_share.md"), "w") as f:
     f.write("Shares over fluid steps 2..N (step 1 holds LAMMPS's setup). exchange = Δ`exchange_seconds`, LAMMPS = "
             "Δ`lammps_seconds` of `postProcessing/particleLedger/particles.csv` (rank 0's wall clock); loop time = "
             "wall-clock time between the log lines `ExecutionTime` of steps 1 and N, stamped by the script as the "
-            "solver prints them (the log's own ExecutionTime is CPU time to 0.01 s, ClockTime whole seconds). fluid + rest = loop − exchange − LAMMPS: the fluid "
+            "solver prints them (the log's own ExecutionTime is CPU time to 0.01 s, ClockTime whole seconds). "
+            "fluid + rest = loop − exchange − LAMMPS: the fluid "
             "solve (the particles' drag and heat set the gas moving, so it is real work: a particle-free run of the "
             "same gas needs no pressure iterations at all), the `meltdemBalance` function object and the ledger "
             "booking after each step (under 0.5 % of the samples in a profile) and the I/O. On np 2 the exchange "

@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """Coupling interval (DEM steps per fluid step, `demStepsPerFluidStep N`): wall time vs error
-for two coupled cases with known answers (issue 6, speed-accuracy).
+for two coupled cases with known answers (speed vs accuracy).
 
     /usr/bin/python3 bench/coupling_interval.py [--bin build/bin] [--cases thesis,settling]
         [--thesis-n 1,2,5,10,20,50,75,100,200,500,1000] [--settling-n 1,2,5,10,20,50,100,300,750]
@@ -12,8 +12,8 @@ N = 1 is the finest coupling (the particles see a fluid state at most one DEM st
 N = 1000 exchanges once per millisecond. With a fixed N the Courant limit is overridden
 (doc/foam_particle_coupling.rst); the largest Courant number of each run is printed.
 
-Cases (written with tests/coupling/coupledcase.py, as the tests that validate them):
-  * thesis   : thesis 2.3 channel particle (tests/coupling/thesis_particle, `centre`): a
+Cases (written with meltdem.case.coupled, as the tests that validate them):
+  * thesis   : Codina2019 §2.3 channel particle (tests/coupling/thesis_particle, `centre`): a
                600 um particle (8020 kg/m3, cp 48.35, Tm 1000 K, T0 0 K, L so that m L =
                0.248611 J) travelling with 1500 K gas at 2 m/s down a 2.1 x 18.2 x 2.1 mm
                channel of 0.7 mm cells; DEM step 1 us, 8.5 ms. The particle holds 15 times
@@ -45,24 +45,22 @@ import os
 import re
 import shutil
 import subprocess
-import sys
 import tempfile
 import time
 
 import numpy as np
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from build_stamp import build_stamp, stamp_line  # noqa: E402
+from meltdem import paths
+from meltdem.case import coupled as cc
+
+from build_stamp import build_stamp, stamp_line
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 os.environ.setdefault("MELTDEM_SOURCE_DIR", ROOT)
-sys.path.insert(0, os.path.join(ROOT, "tests", "support"))
-sys.path.insert(0, os.path.join(ROOT, "tests", "coupling"))
-import coupledcase as cc  # noqa: E402
 
 ap = argparse.ArgumentParser()
-ap.add_argument("--bin", default=os.environ.get("MELTDEM_BIN", os.path.join(ROOT, "build", "bin")))
+ap.add_argument("--bin", default=paths.bin_dir())
 ap.add_argument("--cases", default="thesis,settling")
 ap.add_argument("--thesis-n", default="1,2,5,10,20,50,75,100,200,500,1000")
 ap.add_argument("--settling-n", default="1,2,5,10,20,50,100,300,750")
@@ -77,7 +75,7 @@ for exe in ("meltdemFoam", "meltdem-lmp"):
     if not os.path.exists(os.path.join(args.bin, exe)):
         raise SystemExit(f"{args.bin}/{exe} not found: build it first")
 
-# thesis 2.3 (tests/coupling/thesis_particle)
+# Codina2019 §2.3 (tests/coupling/thesis_particle)
 TH_D, TH_RHO, TH_CP, TH_TM = 600e-6, 8020.0, 48.35, 1000.0
 TH_M = TH_RHO * np.pi * TH_D**3 / 6
 TH_EL = 0.248611
@@ -125,7 +123,8 @@ def timed(case):
     tau = re.search(r"heat capacity over its particles' conductance is (\S+) s", text)
     bound = re.search(r"T min/max now (\S+), (\S+) K", text)
     if tau:
-        why = (f"stopped {at} by the coupling's bound check (gas {float(bound.group(1)):.4g}-{float(bound.group(2)):.4g} K "
+        why = (f"stopped {at} by the coupling's bound check "
+               f"(gas {float(bound.group(1)):.4g}-{float(bound.group(2)):.4g} K "
                f"left the range before the step; heat exchange time {float(tau.group(1)):.2g} s)")
     else:
         fatal = re.search(r"FOAM FATAL[^\n]*\n(?:[^\n]*\n){0,3}", text)
@@ -134,7 +133,8 @@ def timed(case):
 
 
 def max_courant(case):
-    co = [float(x) for x in re.findall(r"Courant Number mean: \S+ max: (\S+)", open(os.path.join(case, "log.meltdemFoam")).read())]
+    co = [float(x) for x in re.findall(r"Courant Number mean: \S+ max: (\S+)",
+                                       open(os.path.join(case, "log.meltdemFoam")).read())]
     return max(co) if co else np.nan
 
 
@@ -274,8 +274,9 @@ if "thesis" in results:
               f"Melting time reference: the N = {ref['N']} run, {ref['t_melt'] * 1e3:.5g} ms (no closed form: the "
               "particle melts in the gas it cooled). Conservation references are analytic: m cp Tm = "
               f"{TH_M * TH_CP * TH_TM:.6g} J, m L = {TH_EL} J, m 2 m/s = {TH_M * 2:.6g} kg m/s.", "",
-              f"| N | fluid step (us) | max Co | fluid steps | wall (s) | speed-up vs N={ref['N']} | melting starts (ms) | "
-              f"fully molten (ms) | reference N={ref['N']} (ms) | error | sensible heat (J) | vs m cp Tm | latent (J) | vs m L | "
+              f"| N | fluid step (us) | max Co | fluid steps | wall (s) | speed-up vs N={ref['N']} | "
+              f"melting starts (ms) | fully molten (ms) | reference N={ref['N']} (ms) | error | sensible heat (J) | "
+              "vs m cp Tm | latent (J) | vs m L | "
               "momentum handed over (kg m/s) | vs m 2 m/s | worst step mass error | worst step energy error |",
               "|" + "---|" * 18]
     for r in R:
@@ -288,12 +289,14 @@ if "thesis" in results:
             f"{ref['wall'] / r['wall']:.1f} | {r['t_start'] * 1e3:.4g} | {r['t_melt'] * 1e3:.5g} | "
             f"{ref['t_melt'] * 1e3:.5g} | {rel(r['t_melt'], ref['t_melt']):+.2%} | {r['sensible']:.6g} | "
             f"{rel(r['sensible'], TH_M * TH_CP * TH_TM):+.1e} | {r['latent']:.6g} | {rel(r['latent'], TH_EL):+.1e} | "
-            f"{r['momentum']:.6g} | {rel(r['momentum'], TH_M * 2):+.1e} | {r['mass_err']:.1e} | {r['energy_err']:.1e} |")
+            f"{r['momentum']:.6g} | {rel(r['momentum'], TH_M * 2):+.1e} | {r['mass_err']:.1e} | "
+            f"{r['energy_err']:.1e} |")
     lines.append("")
     ok = [r for r in R if not r["why"] and abs(rel(r["t_melt"], ref["t_melt"])) <= 0.01]
     if ok:
         b = max(ok, key=lambda r: r["N"])
-        summary.append(f"Thesis particle: the largest N with the melting time within 1 % of N = {ref['N']} is N = {b['N']} "
+        summary.append(f"Thesis particle: the largest N with the melting time within 1 % of N = {ref['N']} "
+                       f"is N = {b['N']} "
                        f"(fluid step {b['fluid_dt'] * 1e6:g} us, {rel(b['t_melt'], ref['t_melt']):+.2%}, "
                        f"{ref['wall'] / b['wall']:.1f}x faster).")
     stopped = [r for r in R if r["why"]]
@@ -308,7 +311,8 @@ if "settling" in results:
               f"Reference: the standalone `ambient` run of the same LAMMPS input, terminal velocity {v_alone:.6g} m/s "
               f"(Stokes (rho_p - rho) g d^2 / 18 mu = {v_stokes:.6g} m/s; the coupled run differs by the gas its "
               "own drag pushes down, ~1 % at 0.02 cells per diameter).", "",
-              f"| N | fluid step (ms) | max Co | fluid steps | wall (s) | speed-up vs N={ref['N']} | terminal velocity (m/s) | "
+              f"| N | fluid step (ms) | max Co | fluid steps | wall (s) | speed-up vs N={ref['N']} | "
+              "terminal velocity (m/s) | "
               f"reference standalone (m/s) | error | vs coupled N={ref['N']} |", "|" + "---|" * 10]
     for r in R:
         if r["why"]:
@@ -316,12 +320,14 @@ if "settling" in results:
                          f"{v_alone:.6g} | - | - |")
             continue
         lines.append(f"| {r['N']} | {r['fluid_dt'] * 1e3:g} | {r['co']:.2g} | {r['steps']} | {r['wall']:.2f} | "
-                     f"{ref['wall'] / r['wall']:.1f} | {r['v_t']:.6g} | {v_alone:.6g} | {rel(r['v_t'], v_alone):+.3%} | "
+                     f"{ref['wall'] / r['wall']:.1f} | {r['v_t']:.6g} | {v_alone:.6g} | "
+                     f"{rel(r['v_t'], v_alone):+.3%} | "
                      f"{rel(r['v_t'], ref['v_t']):+.3%} |")
     lines.append("")
     R = [r for r in R if not r["why"]]
     spread = max(abs(rel(r["v_t"], ref["v_t"])) for r in R)
-    summary.append(f"Settling grain: every N that ran, up to {R[-1]['N']} (fluid step {R[-1]['fluid_dt'] * 1e3:g} ms), gives the "
+    summary.append(f"Settling grain: every N that ran, up to {R[-1]['N']} "
+                   f"(fluid step {R[-1]['fluid_dt'] * 1e3:g} ms), gives the "
                    f"terminal velocity of N = 1 within {spread:.2%}; its error against the standalone value "
                    f"({rel(ref['v_t'], v_alone):+.2%}) is the cells' doing, not the interval's.")
 lines += ["## Summary", ""] + [f"- {s}" for s in summary] + [""]

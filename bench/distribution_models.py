@@ -16,7 +16,7 @@ V_c the cell volume and V_i = |sphere ∩ cell i| (sphere_box_overlap):
                    times V_c / V_p; 0..2; overlap: round-off, since it is V_i / sum V_i);
   * peak fraction  max_i w_i V_p / V_c, the largest cell volume fraction deposited: the
                    quantity that spikes the fluid density and collapses the fluid time step
-                   (thesis fig. 3.7); a sphere's true fraction in a cell is at most
+                   (Codina2019 fig. 3.7); a sphere's true fraction in a cell is at most
                    min(1, V_p / V_c) (the bound column);
   * centroid       |sum_i w_i x_i - x_p| / d, x_i the cell centres.
 Cost: microseconds per distribute_particle call, median of --reps repetitions of at least

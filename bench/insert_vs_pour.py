@@ -64,7 +64,7 @@ def run_case(binary, fix, steps):
             f.write(text)
         out = subprocess.run([binary, "-in", "in.bench", "-log", "none", "-echo", "none"], cwd=d,
                              stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, check=True).stdout
-    rows = [list(map(float, l.split())) for l in out.splitlines() if re.match(r"^\s+\d+\s+\d+\s*$", l)]
+    rows = [list(map(float, line.split())) for line in out.splitlines() if re.match(r"^\s+\d+\s+\d+\s*$", line)]
     t = np.array(rows)
     psteps = np.trapz(t[:, 1], t[:, 0])
     loop = float(re.search(r"Loop time of ([0-9.eE+-]+)", out).group(1))

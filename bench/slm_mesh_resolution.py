@@ -15,10 +15,12 @@ import os
 import sys
 import time
 
+from meltdem import scene as scenes
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 SRC = os.path.abspath(os.path.join(HERE, ".."))
-sys.path.insert(0, os.path.join(SRC, "examples", "slm-track"))
-import scene  # noqa: E402
+
+scene = scenes.module("slm-track")
 
 
 def main():
@@ -99,13 +101,15 @@ def write(results, np_, out):
              "`bench/slm_mesh_resolution.py` (examples/slm-track CI floor 0.3 x 0.3 mm, 153 grains, "
              "0.2 mm of track at 0.5 m/s, 100 W, 0.1 mm spot, eta 0.5; overlap distribution; fluid step 1 us; "
              f"{np_} rank(s); CPU = the solver's ExecutionTime (LAMMPS included), wall on a shared 2-core machine "
-             "with load 8-10, so wall times are 2.5-4x the CPU times and noisy). Width and depth of the melted region (peak T above the "
+             "with load 8-10, so wall times are 2.5-4x the CPU times and noisy). Width and depth of the melted "
+             "region (peak T above the "
              "middle of the melting range; median over the x-slices of the middle of the track). Reference: the "
              "conduction-only melt width of the same eta P, v and Gaussian spot on bare SS304"
              + (f" ({ref['gaussian_width_m'] * 1e6:.1f} um; Rosenthal point source "
                 f"{ref['rosenthal_width_m'] * 1e6:.1f} um)." if ref else "."), "",
-             "| gas cp [J/kg/K] | cell [um] | cells | spot radius / cell | width [um] | depth [um] | bead height [um] | "
-             "width error vs finest | width error vs conduction estimate | CPU [s] | wall [s] | status |",
+             "| gas cp [J/kg/K] | cell [um] | cells | spot radius / cell | width [um] | depth [um] | "
+             "bead height [um] | width error vs finest | width error vs conduction estimate | CPU [s] | wall [s] | "
+             "status |",
              "|---|---|---|---|---|---|---|---|---|---|---|---|"]
     fig, ax = plt.subplots(1, 2, figsize=(11, 4.2))
     for cp in series:
@@ -115,7 +119,8 @@ def write(results, np_, out):
         for s in rows:
             h = s["cell_m"]
             if s.get("status") != "ok":
-                lines.append(f"| {cp:g} | {h * 1e6:g} | | {50e-6 / h:.2f} | | | | | | | {s['wall_s']:.0f} | {s['status']} |")
+                lines.append(f"| {cp:g} | {h * 1e6:g} | | {50e-6 / h:.2f} | | | | | | | {s['wall_s']:.0f} | "
+                             f"{s['status']} |")
                 continue
             ef = (s["track_width_m"] - finest["track_width_m"]) / finest["track_width_m"]
             ea = (s["track_width_m"] - s["gaussian_width_m"]) / s["gaussian_width_m"]

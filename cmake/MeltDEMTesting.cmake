@@ -8,6 +8,7 @@ function(meltdem_test_environment test)
     "MELTDEM_REPORT_DIR=${MELTDEM_REPORT_DIR}"
     "MELTDEM_BIN=${CMAKE_BINARY_DIR}/bin"
     "MELTDEM_SOURCE_DIR=${CMAKE_SOURCE_DIR}"
+    "PYTHONPATH=${CMAKE_SOURCE_DIR}/python"
     "WM_PROJECT_DIR=${MELTDEM_FOAM_PROJECT_DIR}"
     "OMPI_ALLOW_RUN_AS_ROOT=1" "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1"
     "OMPI_MCA_rmaps_base_oversubscribe=1")
@@ -22,8 +23,8 @@ function(meltdem_add_script_test)
   if(ARG_TIMEOUT)
     set_property(TEST ${ARG_NAME} PROPERTY TIMEOUT ${ARG_TIMEOUT})
   endif()
-  # a 2-rank test takes both of ctest -j2's slots: two of them side by side put 4 busy-polling
-  # ranks on 2 cores and ran 30x slower (coupling.thesis_particle.np2: 8 s alone, 4 min paired)
+  # a 2-rank test takes both of ctest -j2's slots: two of them side by side would put 4
+  # busy-polling MPI ranks on 2 cores
   if(ARG_NAME MATCHES "np2" OR "mpi" IN_LIST ARG_LABELS OR "--np" IN_LIST ARG_COMMAND
      OR "-np" IN_LIST ARG_COMMAND)
     set_property(TEST ${ARG_NAME} PROPERTY PROCESSORS 2)

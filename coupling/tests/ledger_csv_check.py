@@ -1,7 +1,7 @@
 #!/usr/bin/python3
-"""The ledger CSV a user plots: the thesis-particle ledger test writes it, scripts/plot_ledger.py
+"""The ledger CSV a user plots: the Codina2019-particle ledger test writes it, scripts/plot_ledger.py
 draws it, and the columns re-evaluated here independently (numpy, plain doubles) give back the
-thesis eq. 2.20 / 2.26 / 2.36 errors and the metal that left through the outlet."""
+Codina2019 eq. 2.20 / 2.26 / 2.36 errors and the metal that left through the outlet."""
 import os
 import subprocess
 import sys
@@ -9,18 +9,18 @@ import tempfile
 
 import numpy as np
 
-src = os.environ["MELTDEM_SOURCE_DIR"]
-sys.path.insert(0, os.path.join(src, "tests", "support"))
-sys.path.insert(0, os.path.join(src, "scripts"))
-from meltdem_report import check_absolute, check_at_most, check_relative  # noqa: E402
-import plot_ledger  # noqa: E402
+from meltdem import paths
+from meltdem.cli import plot_ledger
+from meltdem.testing.report import check_absolute, check_at_most, check_relative
+
+src = paths.source_dir()
 
 T = "coupling.ledger_csv"
 ok = True
 with tempfile.TemporaryDirectory() as tmp:
     csv = os.path.join(tmp, "ledger.csv")
     env = dict(os.environ, MELTDEM_LEDGER_CSV=csv)
-    r = subprocess.run([os.path.join(os.environ["MELTDEM_BIN"], "coupling_unit_tests"),
+    r = subprocess.run([paths.binary("coupling_unit_tests"),
                         "--gtest_filter=ConservationLedger.ThesisParticleMeltBalancesClose"],
                        env=env, capture_output=True, text=True)
     if r.returncode != 0 or not os.path.exists(csv):
@@ -31,7 +31,7 @@ with tempfile.TemporaryDirectory() as tmp:
     ok &= os.path.getsize(png) > 10000
     d = plot_ledger.load(csv)
     ok &= check_absolute(T, "rows (1 initial + 200 melt + 50 outflow steps)", len(d), 251, 0)
-    # thesis form re-evaluated from the columns: (sources - (new - old)) / new; in plain doubles
+    # Codina2019 form re-evaluated from the columns: (sources - (new - old)) / new; in plain doubles
     # the rounding of the columns is ~eps of the amounts moved, so it agrees to ~1e-13
     for c, tol in (("mass", 1e-14), ("enthalpy", 1e-12), ("mom_y", 1e-14)):
         new, old = d[c + "_continuum"][1:], d[c + "_continuum"][:-1]
@@ -42,7 +42,8 @@ with tempfile.TemporaryDirectory() as tmp:
     ok &= check_relative(T, "metal through the outlet (cumulative out - in) vs m (1 - 0.9^50)",
                          d["mass_cumulative_boundary_out"][-1] - d["mass_cumulative_boundary_in"][-1],
                          9.069e-7 * (1 - 0.9 ** 50), 1e-12)
-    ok &= check_relative(T, "particle mass in the first row (thesis 9.069e-7 kg)", d["mass_particles"][0], 9.069e-7, 1e-15)
+    ok &= check_relative(T, "particle mass in the first row (thesis 9.069e-7 kg)", d["mass_particles"][0],
+                         9.069e-7, 1e-15)
     ok &= check_relative(T, "particle momentum in the first row (thesis -1.81408e-6 kg m/s)", d["mom_y_particles"][0],
                          -1.81408e-6, 1e-12)
 sys.exit(0 if ok else 1)

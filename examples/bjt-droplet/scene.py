@@ -1,6 +1,6 @@
 #!/usr/bin/python3
-"""Binder jetting: an 80 um binder droplet falling into a 500-particle powder bed (SPH paper
-section 4.2, configuration of section 4.1, tables 2-4), isothermal (no energy equation).
+"""Binder jetting: an 80 um binder droplet falling into a 500-particle powder bed (Fuchs2022
+§4.2, configuration of §4.1, tables 2-4), isothermal (no energy equation).
 
     scene.py build    CASE [--ci | --full] [--speeds 1,10,50] [--dx DX] [--particles on|off]
                            [--end T1,T2,T3] [--distribution overlap|neighbours|centre]
@@ -24,44 +24,39 @@ import math
 import os
 import shutil
 import subprocess
-import sys
 import time
 
 import numpy as np
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-REPO = os.environ.get("MELTDEM_SOURCE_DIR") or os.path.dirname(os.path.dirname(HERE))
-os.environ.setdefault("MELTDEM_SOURCE_DIR", REPO)
-os.environ.setdefault("MELTDEM_BIN", os.path.join(REPO, "build", "bin"))
-os.environ.setdefault("WM_PROJECT_DIR", "/usr/share/openfoam")
-sys.path.insert(0, os.path.join(REPO, "tests", "support"))
-sys.path.insert(0, os.path.join(REPO, "tests", "coupling"))
-import foamcase as fc  # noqa: E402
-import coupledcase as cc  # noqa: E402
+from meltdem import paths
+from meltdem.case import coupled as cc
+from meltdem.case import foam as fc
+from meltdem.io import dumps
+from meltdem.scene import Scene
 
-# SPH paper tables 2-4
+HERE = os.path.dirname(os.path.abspath(__file__))
+REPO = paths.source_dir()
+paths.set_tool_environment()
+
+# Fuchs2022 tables 2-4
 BINDER = dict(rho=1000.0, mu=1.0e-3, sigma=0.5, theta=60.0)
 GAS = dict(rho=7.43, mu=6.0e-4)
 POWDER = dict(rho=7430.0, E=200e9, nu=0.3, median=22.6e-6, sigln=0.2, dlo=16e-6, dhi=32e-6)
 G = 9.81
-# section 4.2 geometry
+# Fuchs2022 §4.2 geometry
 DROP_D = 80e-6
 DROP_ABOVE = 100e-6        # droplet centre above the substrate
 ZFLOOR = 20e-6             # substrate thickness: its top is the floor of the mesh
-END = {1.0: 1.0e-4, 10.0: 5.0e-5, 50.0: 2.0e-5}   # paper's times (1, 10 m/s); 50 m/s ours
+END = {1.0: 1.0e-4, 10.0: 5.0e-5, 50.0: 2.0e-5}   # Fuchs2022's times (1, 10 m/s); 50 m/s ours
 
 VARIANTS = {
-    # paper size: 320 x 320 x 200 um, 500 particles
+    # Fuchs2022 size: 320 x 320 x 200 um, 500 particles
     "full": dict(L=320e-6, ztop=200e-6, N=500, dx=20e-6 / 3, speeds=[1.0, 10.0, 50.0],
                  distribution="neighbours"),
     # CI: 200 x 200 um floor (same powder per area: 195 particles), 10 um cells
     "ci": dict(L=200e-6, ztop=200e-6, N=195, dx=10e-6, speeds=[1.0, 10.0, 50.0],
                distribution="neighbours"),
 }
-
-
-def bin_path(name):
-    return os.path.join(os.environ["MELTDEM_BIN"], name)
 
 
 def speed_dir(v):
@@ -86,7 +81,7 @@ def build(case, variant="ci", speeds=None, dx=None, particles="on", end=None, di
     os.makedirs(bed, exist_ok=True)
     shutil.copy(os.path.join(HERE, "in.bed"), os.path.join(bed, "in.bed"))
     with open(os.path.join(case, "scene.json"), "w") as f:
-        json.dump(p, f, indent=1)
+        json.dump(dict(p, scene="bjt-droplet"), f, indent=1)
     for v in p["speeds"]:
         write_foam_case(os.path.join(case, speed_dir(v)), p, v, ends[v])
     print(f"built {case}: {variant}, speeds {p['speeds']} m/s, dx {p['dx'] * 1e6:.3g} um, particles {particles}")
@@ -233,7 +228,7 @@ def run(case, np_=1):
     bed = os.path.join(case, "bed")
     if p["particles"] == "on" and not os.path.exists(os.path.join(bed, "bed.data")):
         t0 = time.time()
-        cmd = mpirun(np_) + [bin_path("meltdem-lmp"), "-in", "in.bed", "-log", "log.bed",
+        cmd = mpirun(np_) + [paths.binary("meltdem-lmp"), "-in", "in.bed", "-log", "log.bed",
                              "-var", "L", repr(p["L"]), "-var", "N", str(p["N"]),
                              "-var", "zfloor", repr(ZFLOOR), "-var", "ztop", repr(p["ztop"])]
         with open(os.path.join(bed, "out.bed"), "w") as f:
@@ -270,32 +265,20 @@ def run(case, np_=1):
 
 
 # --------------------------------------------------------------------------------- analyse
-def read_dump(path):
-    """all snapshots of a custom dump: list of (time step, dict column -> array sorted by id)"""
-    out = []
-    with open(path) as f:
-        lines = f.read().splitlines()
-    k = 0
-    while k < len(lines):
-        if lines[k].startswith("ITEM: TIMESTEP"):
-            step = int(lines[k + 1])
-            n = int(lines[k + 3])
-            cols = lines[k + 8].split()[2:]
-            data = np.array([[float(w) for w in l.split()] for l in lines[k + 9:k + 9 + n]]).reshape(n, len(cols))
-            out.append((step, {c: data[:, j] for j, c in enumerate(cols)}))
-            k += 9 + n
-        else:
-            k += 1
-    return out
+
+
+def trajectory(c):
+    """all frames of c/traj.dump: list of (time step, dict column -> array)"""
+    return [(fr["step"], dumps.columns(fr)) for fr in dumps.read_frames(os.path.join(c, "traj.dump"))]
 
 
 def read_data_atoms(path):
     """id, radius, x, y, z of a LAMMPS data file (atom_style sphere)"""
     lines = open(path).read().splitlines()
-    k = next(i for i, l in enumerate(lines) if l.startswith("Atoms"))
+    k = next(i for i, line in enumerate(lines) if line.startswith("Atoms"))
     rows = []
-    for l in lines[k + 2:]:
-        w = l.split()
+    for line in lines[k + 2:]:
+        w = line.split()
         if not w:
             break
         rows.append([float(t) for t in w[:7]])
@@ -312,7 +295,8 @@ def bed_surface(atoms, L):
     tops = []
     for i in range(nc):
         for j in range(nc):
-            sel = ((atoms["x"] >= i * w) & (atoms["x"] < (i + 1) * w) & (atoms["y"] >= j * w) & (atoms["y"] < (j + 1) * w))
+            sel = ((atoms["x"] >= i * w) & (atoms["x"] < (i + 1) * w)
+                   & (atoms["y"] >= j * w) & (atoms["y"] < (j + 1) * w))
             if sel.any():
                 tops.append(top[sel].max())
     solid = (4.0 / 3.0 * math.pi * atoms["radius"] ** 3).sum() / L ** 2
@@ -416,7 +400,7 @@ def analyse_speed(case, p, v):
         below = (Z - ZFLOOR) < ztop_bed
         res["binder_in_bed_fraction"] = float(np.sum(a[below]) / np.sum(a))
         # particles: displaced (moved more than their radius) and largest speed
-        snaps = read_dump(os.path.join(c, "traj.dump"))
+        snaps = trajectory(c)
         st = lammps_times(os.path.join(c, "log.lammps"))
         s0 = snaps[0][1]
         s1 = snaps[-1][1]
@@ -431,6 +415,7 @@ def analyse_speed(case, p, v):
         res["max_particle_speed_m_s"] = float(max(np.sqrt(s[1]["vx"] ** 2 + s[1]["vy"] ** 2 + s[1]["vz"] ** 2).max()
                                                   for s in snaps))
         res["max_particle_speed_thermo_m_s"] = max((vm for _, vm in st.values()), default=float("nan"))
+
         # compression beneath the droplet: solid in the cylinder r < R_drop below the bed top
         def solid_under(s):
             r = np.hypot(s["x"] - xc, s["y"] - yc)
@@ -442,7 +427,8 @@ def analyse_speed(case, p, v):
             res["ledger_mass_continuum_error_max"] = float(np.max(np.abs(rows["mass_continuum_error"])))
             res["ledger_momentum_continuum_error_max"] = float(max(np.max(np.abs(rows[f"mom_{k}_continuum_error"]))
                                                                    for k in "xyz"))
-    np.savetxt(os.path.join(c, "fall.txt"), fall, header="time centroid_z centroid_w lowest_binder_above_substrate footprint_radius wetted_radius")
+    np.savetxt(os.path.join(c, "fall.txt"), fall,
+               header="time centroid_z centroid_w lowest_binder_above_substrate footprint_radius wetted_radius")
     return res
 
 
@@ -481,7 +467,7 @@ def plot(case, out=None):
     for row, v in enumerate(p["speeds"]):
         c = os.path.join(case, speed_dir(v))
         times = fc.time_dirs(c)
-        snaps = read_dump(os.path.join(c, "traj.dump")) if p["particles"] == "on" else []
+        snaps = trajectory(c) if p["particles"] == "on" else []
         for col, (t, snap) in enumerate([(times[0], snaps[0] if snaps else None),
                                          (times[-1], snaps[-1] if snaps else None)]):
             ax = axes[row][col]
@@ -531,6 +517,14 @@ def main(argv=None):
         analyse(case)
     if a.command == "plot":
         plot(case)
+
+
+SCENE = Scene(name="bjt-droplet", kind="coupled",
+              title="Binder jetting: a binder droplet into a powder bed (Fuchs2022 §4.2, tables 2–4)",
+              ci_time='1 min 39 s to 3 min 2 s wall', full_time=None,
+              build=lambda case, size: main(["build", case, f"--{size}"]),
+              run=lambda case, np_: main(["run", case, "--np", str(np_)]),
+              analyse=lambda case: main(["analyse", case]))
 
 
 if __name__ == "__main__":

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Directed energy deposition (SPH paper section 4.4, tables 1-3): five 16 um steel powder
+"""Directed energy deposition (Fuchs2022 §4.4, tables 1-3): five 16 um steel powder
 particles fly at 10 m/s along a 45 degree axis into a laser melt pool on a 20 um substrate.
 Coupled meltdemFoam (substrate, melt pool, gas) + LAMMPS (the particles).
 
@@ -11,29 +11,28 @@ Coupled meltdemFoam (substrate, melt pool, gas) + LAMMPS (the particles).
 Geometry (z up): box 260 x 260 x 240 um, substrate z < 20 um, substrate centre C = (130, 130,
 20) um. Particle k (k = 1..5) starts with its centre h_k = 40, 60, 80, 100, 120 um above the
 substrate on the 45 degree axis through C (x = 130 um - h_k, y = 130 um, z = 20 um + h_k) and
-moves at 10 m/s towards C. Laser 312 W, absorptivity 0.5, effective diameter d_w = 140 um: the
-paper's d_w = 2 r_w with r_w the 1/e^2 radius (sigma = r_w/2), i.e. laser { radius 70e-6; }.
-Variant --switch-off: the laser goes off at t = 0.012 ms (paper's second variant).
+moves at 10 m/s towards C. Laser 312 W, absorptivity 0.5, effective diameter d_w = 140 um:
+Fuchs2022's d_w = 2 r_w with r_w the 1/e^2 radius (sigma = r_w/2), i.e. laser { radius 70e-6; }.
+Variant --switch-off: the laser goes off at t = 0.012 ms (Fuchs2022's second variant).
 """
 import argparse
 import json
 import math
 import os
 import re
-import sys
 import time
 
 import numpy as np
 
+from meltdem import paths
+from meltdem.case import coupled as cc
+from meltdem.case import foam as fc
+from meltdem.io import dumps
+from meltdem.scene import Scene
+
 HERE = os.path.dirname(os.path.abspath(__file__))
-REPO = os.environ.get("MELTDEM_SOURCE_DIR") or os.path.abspath(os.path.join(HERE, "..", ".."))
-os.environ.setdefault("MELTDEM_SOURCE_DIR", REPO)
-os.environ.setdefault("MELTDEM_BIN", os.path.join(REPO, "build", "bin"))
-os.environ.setdefault("WM_PROJECT_DIR", "/usr/share/openfoam")
-sys.path.insert(0, os.path.join(REPO, "tests", "support"))
-sys.path.insert(0, os.path.join(REPO, "tests", "coupling"))
-import foamcase as fc  # noqa: E402
-import coupledcase as cc  # noqa: E402
+REPO = paths.source_dir()
+paths.set_tool_environment()
 
 M, G = fc.METAL, fc.GAS
 LX, LY, LZ = 260e-6, 260e-6, 240e-6
@@ -45,8 +44,8 @@ SPEED = 10.0
 P_LASER, ETA, R_W = 312.0, 0.5, 70e-6             # d_w = 2 r_w = 140 um
 T_OFF = 1.2e-5                       # switch-off variant
 T0, T_MELT, DT_MUSHY = 500.0, 1700.0, 10.0
-# fix powder/melt needs latent > 0 and the coupling needs the continuum's L equal to it; the
-# paper has no latent heat of fusion (mjt-droplets uses L 0): 1 J/kg is 6e-7 of cp Tm
+# fix powder/melt needs latent > 0 and the coupling needs the continuum's L equal to it;
+# Fuchs2022 has no latent heat of fusion (mjt-droplets uses L 0): 1 J/kg is 6e-7 of cp Tm
 L_FUS = 1.0
 E_STEEL, NU_STEEL, RESTITUTION = 2e11, 0.3, 0.5
 E_STAR_WALL = E_STEEL / (2 * (1 - NU_STEEL ** 2))  # sphere on a flat of the same steel
@@ -55,10 +54,8 @@ PAPER = dict(pool_diameter_um=130.0, pool_time_ms=0.018, first_in_beam_ms=0.004,
              first_enters_pool_ms=0.006, second_hits_first_ms=0.007, third_immerses_ms=0.009,
              last_flies_ms=0.026)
 
-# end times: laser on to just past the paper's 0.018 ms pool; the switch-off variant to the
-# paper's 0.026 ms. (Until the solid-metal contact remembered the overlap freezing melt puts
-# around a grain, the CI run stopped at 0.017 ms: the last particle, engulfed, was kicked out
-# at 622 m/s and lost; README.) step_cells_off: the fluid step in cells of particle travel
+# end times: laser on to just past Fuchs2022's 0.018 ms pool; the switch-off variant to
+# Fuchs2022's 0.026 ms. step_cells_off: the fluid step in cells of particle travel
 VARIANTS = {"ci": dict(dx=10e-6, end=2.0e-5, end_off=2.6e-5, write=1e-6, step_cells=0.25, step_cells_off=0.25),
             "full": dict(dx=5e-6, end=2.6e-5, end_off=2.6e-5, write=1e-6, step_cells=0.25, step_cells_off=0.02)}
 
@@ -96,7 +93,7 @@ def build(a):
     case = a.case
     os.makedirs(case, exist_ok=True)
     n = mesh_counts(a.dx)
-    # closed walls as in the paper, except the top: open to the atmosphere, so that the gas the
+    # closed walls as in Fuchs2022, except the top: open to the atmosphere, so that the gas the
     # molten powder displaces (the coupling's volume source) can leave a box of incompressible
     # phases
     cc.box_mesh(case, (0, 0, 0), (LX, LY, LZ), n,
@@ -190,9 +187,9 @@ dump track all custom {dump_every} particles.dump id x y z vx vy vz radius f_mel
 dump_modify track sort id format float %.10g
 thermo_style custom step time atoms f_melt[1] f_melt[6]
 thermo 1000
-""")
+""")  # noqa: E501  (a long line of the LAMMPS input written verbatim)
     with open(os.path.join(case, "scene.json"), "w") as f:
-        json.dump(dict(vars(a), n=n), f, indent=1)
+        json.dump(dict(vars(a), n=n, scene="ded-stream"), f, indent=1)
     print(f"built {case}: {n[0]} x {n[1]} x {n[2]} cells of {a.dx * 1e6:g} um "
           f"({D_P / a.dx:.2f} cells per particle diameter), to t = {a.end * 1e3:g} ms, "
           f"laser {'off at 0.012 ms' if a.switch_off else 'on throughout'}")
@@ -214,20 +211,9 @@ def run(case, np_=1):
 DUMP_DT = 1e-7
 
 
-def read_dump(case):
+def read_tracks(case):
     """{id: array of rows (t, x, y, z, vx, vy, vz, r, T, fmelt)}; the time is step * DEM_DT."""
-    out, step, mode = {}, None, None
-    with open(os.path.join(case, "particles.dump")) as f:
-        for line in f:
-            if line.startswith("ITEM:"):
-                mode = line.split()[1]
-                continue
-            if mode == "TIMESTEP":
-                step = int(line)
-            elif mode == "ATOMS":
-                w = line.split()
-                out.setdefault(int(w[0]), []).append([step * DEM_DT] + [float(x) for x in w[1:]])
-    return {k: np.array(v) for k, v in out.items()}
+    return dumps.tracks(os.path.join(case, "particles.dump"), DEM_DT)
 
 
 def results_dirs(case):
@@ -320,7 +306,7 @@ def analyse(case):
     a = json.load(open(os.path.join(case, "scene.json")))
     dx, n = a["dx"], tuple(a["n"])
     pool = pool_stats(case, dx, n)
-    tracks = read_dump(case)
+    tracks = read_tracks(case)
     t, dt, cont, part = laser_budget(case)
     events = particle_events(tracks, float(t[-1]))
     lit = (t - dt >= 0) & (t <= (T_OFF if a["switch_off"] else 1e9))
@@ -397,7 +383,7 @@ def print_summary(s):
           f"enthalpy {s['worst_enthalpy_system_error']:.2e}")
 
 
-def main():
+def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("action", choices=["build", "run", "analyse", "all"])
     ap.add_argument("case")
@@ -418,7 +404,7 @@ def main():
     ap.add_argument("--no-recoil", dest="recoil", action="store_false")
     ap.add_argument("--no-evaporation", dest="evaporation", action="store_false")
     ap.add_argument("--np", type=int, default=1)
-    a = ap.parse_args()
+    a = ap.parse_args(argv)
     v = VARIANTS[a.variant or "ci"]
     a.dx = a.dx or v["dx"]
     a.end = a.end or (v["end_off"] if a.switch_off else v["end"])
@@ -432,6 +418,13 @@ def main():
             fc.run(["reconstructPar"], a.case, "log.reconstructPar")
     if a.action in ("analyse", "all"):
         analyse(a.case)
+
+
+SCENE = Scene(name="ded-stream", kind="coupled",
+              title="Directed energy deposition: a powder stream into a laser melt pool (Fuchs2022 §4.4)",
+              ci_time='15 s (idle machine)', full_time='23 min (5 um cells, to 0.020 ms)',
+              build=lambda case, size: main(["build", case, f"--{size}"]),
+              analyse=lambda case: main(["analyse", case]))
 
 
 if __name__ == "__main__":

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Laser metal deposition, single pass: thesis section 4.1, table 4.1 conditions, compared with
+"""Laser metal deposition, single pass: Codina2019 §4.1, table 4.1 conditions, compared with
 table 4.2 (bead width, height, penetration, powder deposition efficiency).
 
 meltdemFoam (substrate, melt pool, argon) hosts LAMMPS (the powder stream) in one MPI job. A 1 kW
@@ -23,31 +23,29 @@ import argparse
 import json
 import math
 import os
-import re
 import shutil
-import subprocess
 import sys
 import time
 
 import numpy as np
 
+from meltdem import paths
+from meltdem.analysis import profiles
+from meltdem.case import coupled as cc
+from meltdem.case import foam as fc
+from meltdem.scene import Scene
+
 HERE = os.path.dirname(os.path.abspath(__file__))
-REPO = os.environ.get("MELTDEM_SOURCE_DIR") or os.path.normpath(os.path.join(HERE, "..", ".."))
-os.environ.setdefault("MELTDEM_SOURCE_DIR", REPO)
-os.environ.setdefault("MELTDEM_BIN", os.path.join(REPO, "build", "bin"))
-os.environ.setdefault("WM_PROJECT_DIR", "/usr/share/openfoam")
-sys.path.insert(0, os.path.join(REPO, "tests", "support"))
-import foamcase as fc  # noqa: E402
-sys.path.insert(0, os.path.join(REPO, "tests", "coupling"))
-import coupledcase as cc  # noqa: E402
+REPO = paths.source_dir()
+paths.set_tool_environment()
 
 # ---------------------------------------------------------------------------------------------
-# Table 4.1 (process) and table 4.2 (references)
+# Codina2019 table 4.1 (process) and table 4.2 (references)
 PROCESS = dict(power=1000.0,            # W
                spot_diameter=2.5e-3,    # m, Gaussian, taken as the 1/e^2 diameter
                speed=100e-3 / 60.0,     # m/s (100 mm/min)
                feed=1.6e-3 / 60.0,      # kg/s (1.6 g/min)
-               dmin=40e-6, dmax=200e-6, # m, powder size range
+               dmin=40e-6, dmax=200e-6,  # m, powder size range
                substrate_thickness=5e-3)
 EXPERIMENT = dict(width_mm=3.46, height_mm=0.82, penetration_mm=0.61, efficiency_pct=85.8)
 THESIS_SIM = dict(width_mm=3.3, height_mm=0.75, penetration_mm=0.75, efficiency_pct=86.5)
@@ -71,7 +69,7 @@ VARIANTS = {
     # CI: 0.5 mm cells, 1.2 mm of track (0.72 s); the measured section then lies just before the
     # start and misses part of its powder: the CI geometry is a smoke check
     "ci": dict(dx=0.5e-3, track=1.2e-3, write=0.06, absorptivity=0.35),
-    # full: the thesis's 0.25 mm cells, a shortened track (3 mm, 1.8 s; see README)
+    # full: Codina2019's 0.25 mm cells, a shortened track (3 mm, 1.8 s; see README)
     "full": dict(dx=0.25e-3, track=3.0e-3, write=0.1, absorptivity=0.35),
 }
 
@@ -115,7 +113,9 @@ class Geometry:
     def __init__(self, dx, track, margin_behind=2.5e-3, margin_ahead=2.5e-3, coarse_x=4e-3,
                  y_fine=3.0e-3, width=8e-3, z_fine=1.5e-3, gas=1.75e-3):
         self.dx, self.track = dx, track
-        snap = lambda v: math.ceil(v / dx - 1e-9) * dx     # fine zones hold whole cells (z = 0 a face)
+
+        def snap(v):
+            return math.ceil(v / dx - 1e-9) * dx     # fine zones hold whole cells (z = 0 a face)
         y_fine, z_fine, gas = snap(y_fine), snap(z_fine), snap(gas)
         self.x_start = coarse_x + margin_behind
         self.x_end = self.x_start + track
@@ -148,7 +148,7 @@ class Geometry:
 
 
 def grading_text(secs):
-    return "(" + " ".join(f"({l * 1e3!r} {n} {e!r})" for l, n, e in secs) + ")"
+    return "(" + " ".join(f"({length * 1e3!r} {n} {e!r})" for length, n, e in secs) + ")"
 
 
 def write_mesh(case, g):
@@ -189,7 +189,7 @@ def powder_rings(w, nrings=4, rmax_w=2.0):
 
 
 def dem_step(estar, dmin, v):
-    """A tenth of the Hertz contact time (thesis eq. 3.1) of the smallest grain hitting the
+    """A tenth of the Hertz contact time (Codina2019 eq. 3.1) of the smallest grain hitting the
     solid metal (or another grain) at speed v."""
     m = RHO_POWDER * math.pi * dmin ** 3 / 6.0
     tc = 2.87 * (m ** 2 / (0.5 * dmin * estar ** 2 * v)) ** 0.2
@@ -269,7 +269,7 @@ fix             melt all powder/melt cp {METAL['cp']!r} Tmelt {T_MELT_PARTICLE!r
 # the nozzle moves with the beam: ring centres follow x_beam(t)
 variable        xb equal {g.x_start!r}+{PROCESS['speed']!r}*time
 region          slab block {xa!r} {xb!r} 0.0 {radii[-1] + 0.1e-3!r} {z0!r} {z1!r}
-"""]
+"""]  # noqa: E501  (long lines of the LAMMPS input written verbatim)
     ins = []
     for k in range(len(frac)):
         ro, ri = radii[k + 1], radii[k]
@@ -301,7 +301,7 @@ dump_modify     grains sort id
 thermo_style    custom step time atoms v_nins v_mins v_mmelt
 thermo_modify   format float %.15g
 thermo          {every * 20}
-""")
+""")  # noqa: E501  (a long line of the LAMMPS input written verbatim)
     with open(os.path.join(case, "in.particles"), "w") as f:
         f.write("".join(lines))
     return dt
@@ -395,9 +395,9 @@ particles
     demStepsPerFluidStep auto;
     laserShadow     {"on" if a.laser_shadow else "off"};   // powder absorption is negligible in LMD (thesis 4.1)
 }}
-""")
+""")  # noqa: E501  (a long line of the dictionary written verbatim)
     dem_dt = write_lammps(case, g, a)
-    meta = dict(vars(a), cells=g.cells(), n=g.n, x_start=g.x_start, x_end=g.x_end, dem_dt=dem_dt,
+    meta = dict(vars(a), scene="lmd-track", cells=g.cells(), n=g.n, x_start=g.x_start, x_end=g.x_end, dem_dt=dem_dt,
                 dt_capillary=dt_cap)
     with open(os.path.join(case, "scene.json"), "w") as f:
         json.dump(meta, f, indent=1)
@@ -479,10 +479,10 @@ def analyse(case, quiet=False):
         height = float(np.max(prof))
         # fused width at the plate surface: liquid fraction 0.5 crossing along y in the top row
         fr = fmax[ksurf, :, i]
-        width = 2.0 * crossing(yc, fr, 0.5)
+        width = 2.0 * profiles.first_fall(yc, fr, 0.5)
         # penetration: liquid fraction 0.5 crossing along -z in the column at y = 0
         col = fmax[:ksurf + 1, 0, i][::-1]          # from the surface down
-        depth = crossing(-zc[:ksurf + 1][::-1], col, 0.5)
+        depth = profiles.first_fall(-zc[:ksurf + 1][::-1], col, 0.5)
         rows.append((xc[i], width, height, depth))
     rows = np.array(rows)
     have_ledger = os.path.exists(os.path.join(case, "postProcessing", "particleLedger", "ledger.csv"))
@@ -549,7 +549,7 @@ def analyse(case, quiet=False):
 def geometric_capture(case, g, meta, tds, n_last=3):
     """Bare track (no powder): the share of the powder spot (its rings, each uniform) that falls
     on the pool surface (top metal cells with liquid fraction >= 0.5, the pool at the surface),
-    averaged over the last written times: the thesis's 'geometrical matching of the powder
+    averaged over the last written times: Codina2019's 'geometrical matching of the powder
     stream and the meltpool surface', an estimate of the deposition efficiency without the
     coupled grains. Also the bead height a parabolic bead of the fused width would get from it."""
     xc, yc, zc = g.centres()
@@ -579,17 +579,6 @@ def geometric_capture(case, g, meta, tds, n_last=3):
         out.append(got)
     eta = float(np.mean(out))
     return {"geometric_capture_pct": 100.0 * eta, "geometric_capture_spread_pct": 100.0 * float(np.ptp(out))}
-
-
-def crossing(s, f, level):
-    """First s where f (sampled at increasing s, f[0] >= level expected) falls below level,
-    linearly interpolated; 0 when f[0] < level, s[-1] when it never falls."""
-    if f[0] < level:
-        return 0.0
-    for i in range(1, len(f)):
-        if f[i] < level:
-            return float(s[i - 1] + (f[i - 1] - level) / (f[i - 1] - f[i]) * (s[i] - s[i - 1]))
-    return float(s[-1])
 
 
 def lammps_molten(case):
@@ -625,8 +614,10 @@ def print_table(s):
         m, e, t = s[key], EXPERIMENT[ref], THESIS_SIM[ref]
         print(f"{key:32s} {m:9.3f} {e:10.3f} {m - e:+8.3f} {t:10.3f}")
     if "geometric_capture_pct" in s:
-        print(f"bare track (no powder): share of the powder spot on the pool surface {s['geometric_capture_pct']:.1f} % "
-              f"(spread {s['geometric_capture_spread_pct']:.1f}) -- the geometric estimate of the deposition efficiency; "
+        print(f"bare track (no powder): share of the powder spot on the pool surface "
+              f"{s['geometric_capture_pct']:.1f} % "
+              f"(spread {s['geometric_capture_spread_pct']:.1f}) -- the geometric estimate of the deposition "
+              "efficiency; "
               f"implied parabolic bead height {s.get('implied_bead_height_mm', float('nan')):.3f} mm")
     if "powder_fed_kg" not in s:
         return
@@ -689,6 +680,14 @@ def main(argv=None):
     if a.action in ("analyse", "all"):
         analyse(a.case)
     return 0
+
+
+SCENE = Scene(name="lmd-track", kind="coupled",
+              title="Laser metal deposition, single pass (Codina2019 4.1, tables 4.1 / 4.2)",
+              ci_time='2 min 5 s wall', full_time='14 min (medium: 1/3 mm cells, 3 mm of track)',
+              build=lambda case, size: main(["build", case, f"--{size}"]),
+              analyse=lambda case: main(["analyse", case]),
+              summary=lambda case: analyse(case, quiet=True))
 
 
 if __name__ == "__main__":

@@ -1,28 +1,27 @@
 #!/usr/bin/env python3
-"""Material-jetting scene of the SPH paper (section 4.3, tables 1-3) for meltdemFoam, as an
+"""Material-jetting scene of Fuchs2022 (§4.3, tables 1-3) for meltdemFoam, as an
 axisymmetric (wedge) case: a 50 um molten steel droplet at 2500 K falls at 1.6 m/s from 40 um
 (centre) onto a 20 um steel substrate at Tsub (500 K or 1500 K); gas 500 K, walls no-slip at
-500 K (the paper's boundary setting) except the substrate base, held at Tsub (--base 500 for the
-paper's literal setting), gravity 9.81 down. The remelt depth is the deepest point
+500 K (Fuchs2022's boundary setting) except the substrate base, held at Tsub (--base 500 for
+Fuchs2022's literal setting), gravity 9.81 down. The remelt depth is the deepest point
 below the original substrate surface whose temperature reached the melting temperature at any
-written time (paper: ~16 um at t ~ 0.075 ms for Tsub = 1500 K, no noticeable remelting for 500 K).
+written time (Fuchs2022: ~16 um at t ~ 0.075 ms for Tsub = 1500 K, no noticeable remelting for 500 K).
 
     mjt_case.py build CASE --Tsub 1500 [--dx 1e-6 --radius 80e-6 --height 260e-6 --end 1.5e-4]
     mjt_case.py run CASE            (blockMesh + meltdemFoam, serial)
     mjt_case.py depth CASE          (remelt depth from the written T fields)
 
-The paper's box is 160 x 160 x 260 um; the wedge uses a cylinder of radius 80 um. The paper has no
+Fuchs2022's box is 160 x 160 x 260 um; the wedge uses a cylinder of radius 80 um. Fuchs2022 has no
 latent heat of fusion (its Tm = 1700 K is sharp): L = 0 and a narrow solidus-liquidus interval.
 """
 import argparse
 import os
-import sys
 
 import numpy as np
 
+from meltdem.case import foam as fc
+
 HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, os.path.join(HERE, "..", "..", "tests", "support"))
-import foamcase as fc  # noqa: E402
 
 M, G = fc.METAL, fc.GAS
 SUBSTRATE = 20e-6          # substrate thickness
@@ -76,7 +75,7 @@ darcy {{ C 1e10; b 1e-3; }}
     walls = {"walls": "type zeroGradient;", "bottom": "type zeroGradient;"}
     fc.field(case, "alpha.metal", "[0 0 0 0 0 0 0]", alpha, walls, wedge=True)
     # the substrate's base is held at its preheat temperature (a build plate at Tsub); the other
-    # walls at 500 K as in the paper (with a 500 K base the 20 um substrate loses its preheat
+    # walls at 500 K as in Fuchs2022 (with a 500 K base the 20 um substrate loses its preheat
     # within ~10 us, before the droplet lands: sqrt(k/(rho cp) t) = 7 um)
     T_base = args.Tsub if args.base == "Tsub" else T_WALL
     fc.field(case, "T", "[0 0 0 1 0 0 0]", T, {"walls": f"type fixedValue; value uniform {T_WALL!r};",

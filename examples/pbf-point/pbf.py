@@ -1,11 +1,11 @@
-"""Powder bed fusion scenes of the SPH paper (section 4.5, tables 1-3), shared by
+"""Powder bed fusion scenes of Fuchs2022 (§4.5, tables 1-3), shared by
 examples/pbf-point and examples/pbf-line: the bed generator (DEM with meltdem-lmp), the coupled
 case writer (meltdemFoam hosting LAMMPS), the runner and the analysis.
 
 Axes: x along the track, y up (gravity -y, laser -y), z across. The substrate (continuum
 metal) fills y < SUB; the powder (DEM particles, fix powder/melt with solid_metal) rests on it;
 gas above, an open atmosphere at the top (the melt of the particles adds metal volume: the gas
-it displaces must leave), no-slip walls at 500 K elsewhere (paper section 4.1).
+it displaces must leave), no-slip walls at 500 K elsewhere (Fuchs2022 §4.1).
 """
 import json
 import math
@@ -13,50 +13,48 @@ import os
 import re
 import shutil
 import subprocess
-import sys
 import time
 
 import numpy as np
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-REPO = os.environ.get("MELTDEM_SOURCE_DIR") or os.path.abspath(os.path.join(HERE, "..", ".."))
-os.environ.setdefault("MELTDEM_SOURCE_DIR", REPO)
-os.environ.setdefault("MELTDEM_BIN", os.path.join(REPO, "build", "bin"))
-os.environ.setdefault("WM_PROJECT_DIR", "/usr/share/openfoam")
-sys.path.insert(0, os.path.join(REPO, "tests", "support"))
-sys.path.insert(0, os.path.join(REPO, "tests", "coupling"))
-import foamcase as fc  # noqa: E402
-import coupledcase as cc  # noqa: E402
+from meltdem import paths
+from meltdem.case import coupled as cc
+from meltdem.case import foam as fc
+from meltdem.io import dumps
 
-# SPH paper tables 1-3 (stainless steel near Tm = 1700 K; gas scaled rho 1/100, mu 1/10)
+HERE = os.path.dirname(os.path.abspath(__file__))
+REPO = paths.source_dir()
+paths.set_tool_environment()
+
+# Fuchs2022 tables 1-3 (stainless steel near Tm = 1700 K; gas scaled rho 1/100, mu 1/10)
 M, G = fc.METAL, fc.GAS
 T_MELT, DT_MUSHY, T0 = 1700.0, 10.0, 500.0
-# The paper has no latent heat of fusion (mjt-droplets uses L 0). Here the grains are lumped
+# Fuchs2022 has no latent heat of fusion (mjt-droplets uses L 0). Here the grains are lumped
 # (one temperature each): with L ~ 0 a grain at its melting point melts within one fluid step,
 # its whole volume appears in the continuum at once and the gas it displaces leaves at ~100 m/s
 # (Courant ~1 in the step, grains thrown at 50 m/s). Steel's latent heat (2.7e5 J/kg, the
-# thesis's SS304 value; fix powder/melt and the continuum must share it) spreads the melting
+# Codina2019 SS304 value; fix powder/melt and the continuum must share it) spreads the melting
 # of a grain in the beam over ~2 us, as the conduction through a real grain does.
 LATENT = 2.7e5
 ETA, T_BOIL = 0.5, 3000.0
-# DEM contact: the paper's contact is soft (k_c = 1 kg/s^2); E = 2 GPa keeps overlaps < 1e-3 R
+# DEM contact: Fuchs2022's contact is soft (k_c = 1 kg/s^2); E = 2 GPa keeps overlaps < 1e-3 R
 # at rest and ~ 0.08 R head-on at 10 m/s, and a DEM step 16x longer than 200 GPa's.
 E_DEM, NU_DEM, E_REST = 2.0e9, 0.3, 0.3
 RHO_P = M["rho"]
 DT_DEM = 2.0e-8
 MAX_DT_EXCHANGE = 6.0e-8
-# Gas heat capacity. The paper's gas (table 3: rho 7.43, cp 10) holds 1e-5 of the metal's heat
+# Gas heat capacity. Fuchs2022's gas (table 3: rho 7.43, cp 10) holds 1e-5 of the metal's heat
 # per volume. The coupling hands a grain's convective heat to its cells with the volume weights
 # of the distribution, while the grain's heat flux uses the weight-averaged T and k: a grain half
 # in the melt and half in gas then takes half of its heat from the gas cells, which go to -1e3 K
 # within a step (and the recoil pressure p_v(T < 0) explodes). A gas cell's drop per step is
 # about 6 Nu k dT dt / (d^2 rho cp_gas) = 1.3e8 / (rho cp_gas) K for the worst grain (16 um,
 # k 18, dT 1500 K, dt 1e-7 s): cp_gas 1e5 (rho cp = 0.1 of the metal's) keeps it below 200 K.
-# The gas conducts as in the paper (k 0.026), so its heat capacity barely matters elsewhere.
-GAS_CP_STABLE = 1.0e5   # only with --gas-cp; the default is the paper's 10
+# The gas conducts as in Fuchs2022 (k 0.026), so its heat capacity barely matters elsewhere.
+GAS_CP_STABLE = 1.0e5   # only with --gas-cp; the default is Fuchs2022's 10
 
 VARIANTS = {
-    # paper section 4.5 point melting: 320 x 320 x 240 um, 80 um substrate, 500 particles
+    # Fuchs2022 §4.5 point melting: 320 x 320 x 240 um, 80 um substrate, 500 particles
     "point-full": dict(lx=320e-6, ly=240e-6, lz=320e-6, sub=80e-6, n=500, dx=10e-6, power=312.0,
                        rw=70e-6, x0=160e-6, v=0.0, t_move=None, t_off=1.0e-4, t_end=2.5e-4,
                        write=5e-6, dist="overlap"),
@@ -65,8 +63,8 @@ VARIANTS = {
     "point-ci": dict(lx=160e-6, ly=140e-6, lz=160e-6, sub=40e-6, n=100, dx=10e-6, power=312.0,
                      rw=70e-6, x0=80e-6, v=0.0, t_move=None, t_off=3.0e-5, t_end=4.0e-5,
                      write=2.5e-6, dist="overlap"),
-    # paper line melting: 960 x 320 x 240 um, 1500 particles, on at 160 um, at rest to 0.05 ms,
-    # 2 m/s over 640 um, off at 0.37 ms (the paper's videos run to 0.49 ms)
+    # Fuchs2022 line melting: 960 x 320 x 240 um, 1500 particles, on at 160 um, at rest to 0.05 ms,
+    # 2 m/s over 640 um, off at 0.37 ms (Fuchs2022's videos run to 0.49 ms)
     "line-full": dict(lx=960e-6, ly=240e-6, lz=320e-6, sub=80e-6, n=1500, dx=10e-6, power=312.0,
                       rw=70e-6, x0=160e-6, v=2.0, t_move=5.0e-5, t_off=3.7e-4, t_end=4.2e-4,
                       write=1e-5, dist="overlap"),
@@ -78,10 +76,6 @@ VARIANTS = {
 }
 
 D_LO, D_HI, D_MED, D_SIG = 16e-6, 32e-6, 23e-6, 0.2   # log-normal, truncated to 16-32 um
-
-
-def lmp_bin():
-    return os.path.join(os.environ["MELTDEM_BIN"], "meltdem-lmp")
 
 
 # ----------------------------------------------------------------------------------------------
@@ -124,7 +118,7 @@ thermo          2000
 timestep        1e-9
 run             100000000
 write_dump      all custom bed.dump id radius x y z modify sort id
-"""
+"""  # noqa: E501  (long lines of the LAMMPS input written verbatim)
 
 
 def make_bed(bed_dir, cfg, seed=4711):
@@ -139,16 +133,10 @@ def make_bed(bed_dir, cfg, seed=4711):
             f.write(inp)
         t0 = time.time()
         with open(os.path.join(bed_dir, "log.bed"), "w") as log:
-            subprocess.run([lmp_bin(), "-in", "in.bed", "-log", "log.lammps"], cwd=bed_dir, stdout=log,
-                           stderr=subprocess.STDOUT, check=True)
+            subprocess.run([paths.binary("meltdem-lmp"), "-in", "in.bed", "-log", "log.lammps"], cwd=bed_dir,
+                           stdout=log, stderr=subprocess.STDOUT, check=True)
         print(f"bed: {cfg['n']} grains poured and settled in {time.time() - t0:.0f} s")
-    return read_dump(dump)
-
-
-def read_dump(path):
-    lines = open(path).read().splitlines()
-    i = next(k for k, line in enumerate(lines) if line.startswith("ITEM: ATOMS"))
-    a = np.array([[float(t) for t in line.split()] for line in lines[i + 1:] if line.strip()])
+    a = dumps.read_frames(dump)[-1]["data"]
     return np.column_stack([a[:, 2], a[:, 3], a[:, 4], 2 * a[:, 1]])
 
 
@@ -224,7 +212,7 @@ thermo_modify   norm no flush yes format float %.10g
 thermo          1000
 dump            traj all custom 200 traj.dump id x y z vx vy vz radius f_melt[1] f_melt[2]
 dump_modify     traj time yes sort id
-"""
+"""  # noqa: E501  (long lines of the LAMMPS input written verbatim)
 
 
 def write_bed_data(path, cfg, bed):
@@ -313,6 +301,8 @@ energyControls {{ nCorrectors 20; tolerance 1e-10; }}
         f.write(particles_input(cfg, bed))
     with open(os.path.join(case, "pbf.json"), "w") as f:
         json.dump(cfg, f, indent=1)
+    with open(os.path.join(case, "scene.json"), "w") as f:
+        json.dump({"scene": "pbf-line" if variant.startswith("line") else "pbf-point"}, f)
     print(f"{case}: {variant}, {nc[0]} x {nc[1]} x {nc[2]} cells of {h * 1e6:g} um "
           f"({D_LO / h:.1f}-{D_HI / h:.1f} cells per grain diameter, distribution {cfg['dist']}), "
           f"{len(bed)} grains, bed top {cfg['bed_top'] * 1e6:.1f} um")
@@ -327,7 +317,7 @@ def run(case, np_=1, timeout=None):
     if np_ > 1:
         cc.decompose(case, np_, (np_, 1, 1))
     cmd = [fc.solver()] if np_ == 1 else (["mpirun", "--allow-run-as-root", "--oversubscribe", "-np", str(np_)]
-                                         + [fc.solver(), "-parallel"])
+                                          + [fc.solver(), "-parallel"])
     env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
                PWD=os.path.abspath(case))
     with open(os.path.join(case, "log.meltdemFoam"), "w") as log:
@@ -363,29 +353,6 @@ def run(case, np_=1, timeout=None):
 # analysis
 
 
-def read_frames(path):
-    """LAMMPS dump frames of traj.dump: list of (time, array with columns id x y z vx vy vz
-    radius melted_mass melted_fraction)."""
-    frames, t, rows, mode = [], None, [], None
-    with open(path) as f:
-        for line in f:
-            if line.startswith("ITEM:"):
-                if rows and mode == "atoms":
-                    frames.append((t, np.array(rows)))
-                rows = []
-                mode = "time" if line.strip() == "ITEM: TIME" else ("atoms" if line.startswith("ITEM: ATOMS")
-                                                                     else "other")
-                continue
-            if mode == "time":
-                t = float(line)
-                mode = "other"
-            elif mode == "atoms":
-                rows.append([float(v) for v in line.split()])
-    if rows and mode == "atoms":
-        frames.append((t, np.array(rows)))
-    return frames
-
-
 def grains(case, cfg):
     """Ejected grains: a grain whose centre rose more than its own diameter above where it
     started (it left the bed upwards); their peak speeds (max |v| over the frames after they
@@ -393,7 +360,7 @@ def grains(case, cfg):
     path = os.path.join(case, "traj.dump")
     if not os.path.exists(path):
         return {}
-    frames = read_frames(path)
+    frames = [(fr["time"], fr["data"]) for fr in dumps.read_frames(path) if len(fr["data"])]
     if not frames:
         return {}
     t0, f0 = frames[0]
@@ -550,7 +517,8 @@ def summary(case):
     if cfg["v"]:
         # the moving pool: widest written pool in the second half of the travel (Eagar-Tsai is
         # the quasi-steady pool), and the profile along the track
-        late = [r for r in series if cfg["t_move"] + 0.5 * (cfg["t_off"] - cfg["t_move"]) <= r["time_s"] <= cfg["t_off"]]
+        late = [r for r in series
+                if cfg["t_move"] + 0.5 * (cfg["t_off"] - cfg["t_move"]) <= r["time_s"] <= cfg["t_off"]]
         s["melt_pool_width_moving_um"] = max((r["width_m"] for r in late), default=0.0) * 1e6
         s["melt_pool_depth_moving_um"] = max((r["depth_m"] for r in late), default=0.0) * 1e6
         s["eagar_tsai_width_um"] = eagar_tsai_width(ETA * cfg["power"], cfg["v"], cfg["rw"] / 2) * 1e6
@@ -575,8 +543,10 @@ def summary(case):
     s["evaporation_energy_J"] = evap
     steps = led[1:]
     for comp, key in (("mass", "mass"), ("enthalpy", "energy")):
-        s[f"worst_step_continuum_{key}_error"] = float(np.max(np.abs(steps[f"{comp}_continuum_error"]))) if len(steps) else 0.0
-        s[f"worst_step_system_{key}_error"] = float(np.max(np.abs(steps[f"{comp}_system_error"]))) if len(steps) else 0.0
+        s[f"worst_step_continuum_{key}_error"] = (float(np.max(np.abs(steps[f"{comp}_continuum_error"])))
+                                                  if len(steps) else 0.0)
+        s[f"worst_step_system_{key}_error"] = (float(np.max(np.abs(steps[f"{comp}_system_error"])))
+                                               if len(steps) else 0.0)
     s["cumulative_system_mass_error"] = float(led["mass_cumulative_system_error"][-1])
     s["T_min_K"], s["T_max_K"] = log_T_range(case)
     s["solver_stop"] = stop_reason(case) or ""
@@ -618,8 +588,9 @@ def eagar_tsai_width(q, v, sigma, k=M["k"], rho=M["rho"], cp=M["cp"], T0=T0, Tm=
     a = k / (rho * cp)
 
     def temp(x, y):
-        f = lambda u: (np.exp(-((x + v * u * u) ** 2 + y ** 2) / (4 * a * u * u + 2 * sigma ** 2))
-                       / (2 * a * u * u + sigma ** 2)) * 2.0   # t = u^2: dt/sqrt(t) = 2 du
+        def f(u):
+            return (np.exp(-((x + v * u * u) ** 2 + y ** 2) / (4 * a * u * u + 2 * sigma ** 2))
+                    / (2 * a * u * u + sigma ** 2)) * 2.0   # t = u^2: dt/sqrt(t) = 2 du
         val, _ = quad(f, 0, np.inf, limit=400)
         return T0 + q / (np.pi * rho * cp * np.sqrt(4 * np.pi * a)) * val
 

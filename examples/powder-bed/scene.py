@@ -1,13 +1,13 @@
 #!/usr/bin/python3
-"""Powder bed (thesis table 4.3/4.4), DEM only: the scene interface of examples/.
+"""Powder bed (Codina2019 table 4.3/4.4), DEM only: the scene interface of examples/.
 
     scene.py build CASE [--ci | --full]   write CASE/ (the input and its variables)
     scene.py run CASE [--np N]            meltdem-lmp (mpirun -np N for N > 1)
-    scene.py analyse CASE                 bed thickness, packing (bed_stats.py) -> CASE/summary.json
+    scene.py analyse CASE                 bed thickness, packing (meltdem.analysis.beds) -> CASE/summary.json
     scene.py all CASE [--ci | --full] [--np N]
 
 --ci is what tests/dem/powder_bed checks (0.30 x 0.30 mm floor, periodic sideways, 153
-particles, ~30 s serial); --full (default) the thesis box 0.90 x 0.21 x 0.90 mm with walls,
+particles, ~30 s serial); --full (default) the Codina2019 box 0.90 x 0.21 x 0.90 mm with walls,
 1375 particles (~7 min on 2 cores). README.md explains both.
 """
 import argparse
@@ -15,13 +15,14 @@ import json
 import os
 import shutil
 import subprocess
-import sys
+
+from meltdem import paths
+from meltdem.analysis.beds import bed_stats
+from meltdem.scene import Scene
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.abspath(os.path.join(HERE, "..", ".."))
-BIN = os.environ.get("MELTDEM_BIN", os.path.join(REPO, "build", "bin"))
-sys.path.insert(0, HERE)
-from bed_stats import bed_stats  # noqa: E402
+BIN = paths.bin_dir()
 
 VARIANTS = {
     "ci": {"Lx": "3e-4", "Lz": "3e-4", "sides": "periodic", "every": "100"},
@@ -60,7 +61,7 @@ def analyse(case):
     return summary
 
 
-def main():
+def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("action", choices=["build", "run", "analyse", "all"])
     ap.add_argument("case")
@@ -68,7 +69,7 @@ def main():
     size.add_argument("--ci", action="store_const", dest="variant", const="ci")
     size.add_argument("--full", action="store_const", dest="variant", const="full")
     ap.add_argument("--np", type=int, default=1)
-    a = ap.parse_args()
+    a = ap.parse_args(argv)
     case = os.path.abspath(a.case)
     if a.action in ("build", "all"):
         build(case, a.variant or "full")
@@ -76,6 +77,14 @@ def main():
         run(case, a.np)
     if a.action in ("analyse", "all"):
         analyse(case)
+
+
+SCENE = Scene(name="powder-bed", kind="dem",
+              title="Powder bed (Codina2019 table 4.3 / 4.4)",
+              ci_time='~30 s serial', full_time='~7 min on 2 ranks',
+              build=lambda case, size: main(["build", case, f"--{size}"]),
+              analyse=lambda case: main(["analyse", case]),
+              summary=analyse)
 
 
 if __name__ == "__main__":

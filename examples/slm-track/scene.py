@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""SLM single track over a generated powder bed (thesis section 4.2.2, tables 4.5 / 4.6),
+"""SLM single track over a generated powder bed (Codina2019 §4.2.2, tables 4.5 / 4.6),
 coupled meltdemFoam + LAMMPS.
 
     scene.py build CASE [--ci | --full] [--cell H] [--bed DUMP] [--track L] [--distribution M]
@@ -8,7 +8,7 @@ coupled meltdemFoam + LAMMPS.
     scene.py analyse CASE
     scene.py all CASE [--ci | --full] [--np N] [build options]
 
-build pours the powder bed with examples/powder-bed/in.powder-bed (closed box, the thesis's
+build pours the powder bed with examples/powder-bed/in.powder-bed (closed box, the Codina2019
 table 4.3 settings) unless --bed gives its dump, turns the dump into a LAMMPS data file
 (the coupled run's initial particle state) and writes the OpenFOAM case: a box of uniform
 hexahedra over the bed's floor, a solid SS304 substrate below the floor (y < 0), argon above,
@@ -25,17 +25,18 @@ import time
 
 import numpy as np
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-SRC = os.environ.get("MELTDEM_SOURCE_DIR") or os.path.abspath(os.path.join(HERE, "..", ".."))
-os.environ["MELTDEM_SOURCE_DIR"] = SRC
-os.environ.setdefault("MELTDEM_BIN", os.path.join(SRC, "build", "bin"))
-os.environ.setdefault("WM_PROJECT_DIR", "/usr/share/openfoam")
-sys.path.insert(0, os.path.join(SRC, "tests", "support"))
-sys.path.insert(0, os.path.join(SRC, "tests", "coupling"))
-import coupledcase as cc  # noqa: E402
-import foamcase as fc  # noqa: E402
+from meltdem import paths
+from meltdem.analysis import profiles
+from meltdem.case import coupled as cc
+from meltdem.case import foam as fc
+from meltdem.io import dumps
+from meltdem.scene import Scene
 
-# --- thesis tables 4.5 / 4.6 -------------------------------------------------------------
+HERE = os.path.dirname(os.path.abspath(__file__))
+SRC = paths.source_dir()
+paths.set_tool_environment()
+
+# --- Codina2019 tables 4.5 / 4.6 ---------------------------------------------------------
 POWER, SPOT, SPEED, ETA = 100.0, 0.1e-3, 0.5, 0.5   # W, spot diameter (1/e^2) m, m/s, absorptivity
 ALPHA_P, ALPHA_W = 0.5, 0.5                         # damping alpha particle-particle / wall (table 4.6)
 # --- SS304 (representative values averaged over 300-1700 K; one set for powder and substrate) ---
@@ -45,8 +46,7 @@ MU_MELT, SIGMA0, DSIGMA = 6e-3, 1.8, -4e-4          # Pa s, N/m, N/m/K
 E_YOUNG, NU, MU_FRICTION = 200e9, 0.3, 0.1          # as examples/powder-bed
 # --- argon at 300 K ---
 GAS = dict(rho=1.6, mu=2.2e-5, cp=520.0, k=0.018)
-# the gas of the case: argon (--gas-cp for the numerical gas of the mesh benchmark). Before the
-# solver's two-body drag (13:14) the viscosity had to be lowered to 1e-8 Pa s (see README)
+# the gas of the case: argon (--gas-cp for the numerical gas of the mesh benchmark)
 GAS_CP_CASE, GAS_MU_CASE = GAS["cp"], GAS["mu"]
 T0 = 300.0
 DEM_DT = 5e-9                                      # s: 1/10 of the Hertz time of two 15 um grains at 1 m/s
@@ -65,7 +65,7 @@ VARIANTS = {
 
 
 def e_of_alpha(a):
-    """Restitution of the Tsuji-damped Hertz contact x'' = -x^1.5 - a x^0.25 x' (thesis eq. 3.5):
+    """Restitution of the Tsuji-damped Hertz contact x'' = -x^1.5 - a x^0.25 x' (Codina2019 eq. 3.5):
     e depends on alpha alone (doc/pair_granular_powder.rst)."""
     from scipy.integrate import solve_ivp
 
@@ -78,53 +78,16 @@ def e_of_alpha(a):
     return float(-s.y_events[0][0][1])
 
 
-def binary(name):
-    return os.path.join(os.environ["MELTDEM_BIN"], name)
-
-
 def mpi_env():
     return {"OMPI_ALLOW_RUN_AS_ROOT": "1", "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM": "1"}
 
 
-def read_dump(path):
-    """(header dict, columns dict) of a one-snapshot LAMMPS custom dump."""
-    with open(path) as f:
-        lines = f.read().splitlines()
-    i = lines.index("ITEM: NUMBER OF ATOMS")
-    n = int(lines[i + 1])
-    j = [k for k, line in enumerate(lines) if line.startswith("ITEM: ATOMS")][0]
-    names = lines[j].split()[2:]
-    data = np.array([[float(v) for v in line.split()] for line in lines[j + 1:j + 1 + n]]).reshape(n, len(names))
-    return {names[c]: data[:, c] for c in range(len(names))}
-
-
-def read_dumps(path):
-    """All snapshots of a LAMMPS custom dump with 'dump_modify time yes': list of (time, columns)."""
-    out = []
-    with open(path) as f:
-        lines = f.read().splitlines()
-    k, t = 0, None
-    while k < len(lines):
-        line = lines[k]
-        if line.startswith("ITEM: TIME") and not line.startswith("ITEM: TIMESTEP"):
-            t = float(lines[k + 1])
-        elif line.startswith("ITEM: NUMBER OF ATOMS"):
-            n = int(lines[k + 1])
-        elif line.startswith("ITEM: ATOMS"):
-            names = line.split()[2:]
-            rows = np.array([[float(v) for v in r.split()] for r in lines[k + 1:k + 1 + n]]).reshape(n, len(names))
-            out.append((t, {names[c]: rows[:, c] for c in range(len(names))}))
-            k += n
-        k += 1
-    return out
-
-
 # ------------------------------------------------------------------------------------------ build
 def pour_bed(case, v):
-    """Run examples/powder-bed for this floor (closed box, thesis table 4.3) into CASE/bed/."""
+    """Run examples/powder-bed for this floor (closed box, Codina2019 table 4.3) into CASE/bed/."""
     bed = os.path.join(case, "bed")
     os.makedirs(bed, exist_ok=True)
-    cmd = [binary("meltdem-lmp"), "-in", os.path.join(SRC, "examples", "powder-bed", "in.powder-bed"),
+    cmd = [paths.binary("meltdem-lmp"), "-in", os.path.join(SRC, "examples", "powder-bed", "in.powder-bed"),
            "-var", "Lx", repr(v["lx"]), "-var", "Lz", repr(v["lz"]), "-var", "sides", "wall",
            "-var", "every", "2000", "-var", "dump", "bed.dump", "-log", "log.powder-bed"]
     if v.get("np", 1) > 1:
@@ -139,7 +102,7 @@ def pour_bed(case, v):
 def write_data(case, dump, v):
     """LAMMPS data file of the bed (atom_style sphere: id type diameter density x y z), at rest;
     the box is the mesh plus a margin (the coupling books particles leaving the mesh)."""
-    d = read_dump(dump)
+    d = dumps.columns(dumps.read_frames(dump)[0])
     order = np.argsort(d["id"])
     r, m = d["radius"][order], d["mass"][order]
     dens = m / (4.0 / 3.0 * np.pi * r ** 3)
@@ -156,7 +119,8 @@ def write_data(case, dump, v):
 
 def lammps_input(case, v, dump_every):
     e_wall = e_of_alpha(ALPHA_W)
-    w = f"hertz/material {E_YOUNG!r} 0.5 {NU!r} damping tsuji/alpha {ALPHA_W!r} tangential mindlin NULL 1.0 {MU_FRICTION!r}"
+    w = (f"hertz/material {E_YOUNG!r} 0.5 {NU!r} damping tsuji/alpha {ALPHA_W!r} "
+         f"tangential mindlin NULL 1.0 {MU_FRICTION!r}")
     with open(os.path.join(case, "in.particles"), "w") as f:
         f.write(f"""# SLM track (thesis 4.2.2, table 4.6): the generated powder bed, coupled to meltdemFoam
 units           si
@@ -266,7 +230,8 @@ def build(case, variant, cell=None, bed=None, track=None, distribution="overlap"
     tStop        {t_scan!r};
 }}
 """
-    fc.meltdem_properties(case, physics=dict(flow="on", energy="on", darcy="on", surfaceTension="on" if surface else "off",
+    fc.meltdem_properties(case, physics=dict(flow="on", energy="on", darcy="on",
+                                             surfaceTension="on" if surface else "off",
                                              marangoni="on" if surface else "off", laser="on", particles="on"),
                           surface=dict(sigma0=SIGMA0, dSigmadT=DSIGMA, Tsigma0=TMELT, sigmaMin=0.2),
                           extra=f"""metal {{ cp {CP!r}; k {K!r}; L {LATENT!r}; Tsolidus {TSOL!r}; Tliquidus {TLIQ!r}; }}
@@ -283,10 +248,10 @@ particles
 """)
     dump_every = 1000  # DEM steps (5 us between snapshots)
     lammps_input(case, v, dump_every)
-    meta = dict(variant=variant, n_cells=list(n), particles=nparticles, t_scan_s=t_scan, t_end_s=t_end,
-                laser_x0_m=v["x0"], laser_x1_m=v["x1"], track_z_m=zc, dt_capillary_s=dt_cap,
-                distribution=distribution, bed_dump=os.path.abspath(dump), gas_cp=gas_cp, gas_mu=gas_mu, fluid_dt_s=n_sub * DEM_DT, **{k: v[k] for k in
-                ("lx", "lz", "top", "sub", "cell", "cool", "write")})
+    meta = dict(scene="slm-track", variant=variant, n_cells=list(n), particles=nparticles, t_scan_s=t_scan,
+                t_end_s=t_end, laser_x0_m=v["x0"], laser_x1_m=v["x1"], track_z_m=zc, dt_capillary_s=dt_cap,
+                distribution=distribution, bed_dump=os.path.abspath(dump), gas_cp=gas_cp, gas_mu=gas_mu,
+                fluid_dt_s=n_sub * DEM_DT, **{k: v[k] for k in ("lx", "lz", "top", "sub", "cell", "cool", "write")})
     json.dump(meta, open(os.path.join(case, "scene.json"), "w"), indent=1)
     print(f"case {case}: {variant}, {n[0]}x{n[1]}x{n[2]} cells of {h * 1e6:g} um, {nparticles} particles, "
           f"track x {v['x0'] * 1e3:g}-{v['x1'] * 1e3:g} mm ({t_scan * 1e3:g} ms) + {v['cool'] * 1e6:g} us cooling")
@@ -310,21 +275,6 @@ def run(case, np_=1):
 
 
 # ---------------------------------------------------------------------------------------- analyse
-def crossing(f, c, level, h):
-    """Positions where the 1D profile f (cell centres c, spacing h) crosses level, outermost on
-    each side of its maximum (linear interpolation); None when f never reaches level."""
-    i = int(np.argmax(f))
-    if f[i] < level:
-        return None
-    lo = i
-    while lo > 0 and f[lo - 1] >= level:
-        lo -= 1
-    hi = i
-    while hi < len(f) - 1 and f[hi + 1] >= level:
-        hi += 1
-    left = c[lo] - h / 2 if lo == 0 else c[lo - 1] + (level - f[lo - 1]) / (f[lo] - f[lo - 1]) * h
-    right = c[hi] + h / 2 if hi == len(f) - 1 else c[hi] + (f[hi] - level) / (f[hi] - f[hi + 1]) * h
-    return left, right
 
 
 def track_geometry(case, meta):
@@ -358,12 +308,12 @@ def track_geometry(case, meta):
     for i in np.nonzero(mid)[0]:
         w = 0.0
         for j in range(ny):
-            cr = crossing(tmax[:, j, i], zc, t_half, h)
+            cr = profiles.level_span(tmax[:, j, i], zc, t_half, h)
             if cr:
                 w = max(w, cr[1] - cr[0])
         widths.append(w)
         col = tmax[k0, :, i] * (1 - (axis - k0)) + tmax[min(k0 + 1, nz - 1), :, i] * (axis - k0)
-        cr = crossing(np.where(above, np.max(col), col), yc, t_half, h)  # from below up to the top
+        cr = profiles.level_span(np.where(above, np.max(col), col), yc, t_half, h)  # from below up to the top
         depths.append(max(-cr[0], 0.0) if cr else 0.0)
         heights.append(np.max(np.sum(alpha_end[:, above, i], axis=1) * h))
     return dict(track_width_m=float(np.median(widths)), track_depth_m=float(np.median(depths)),
@@ -373,7 +323,7 @@ def track_geometry(case, meta):
 
 def particle_motion(case, meta):
     """Ejection and denudation from the particle snapshots (particles.dump)."""
-    snaps = read_dumps(os.path.join(case, "particles.dump"))
+    snaps = [(fr["time"], dumps.columns(fr)) for fr in dumps.read_frames(os.path.join(case, "particles.dump"))]
     t0, first = snaps[0]
     tend, last = snaps[-1]
     ids0 = first["id"].astype(int)
@@ -466,9 +416,8 @@ def laser_power(case, meta):
 def references(meta):
     """Conduction-only melt width of the same eta P, v on a semi-infinite SS304 substrate: Rosenthal
     (point source) and the Gaussian surface source of the 0.1 mm spot (quasi-steady, t = 1 ms),
-    both at Tm; no latent heat, no powder (tests/foam/rosenthal/rosenthal_ref.py)."""
-    sys.path.insert(0, os.path.join(SRC, "tests", "foam", "rosenthal"))
-    from rosenthal_ref import rosenthal, width_at_depth, gaussian_transient
+    both at Tm; no latent heat, no powder (meltdem.analysis.rosenthal)."""
+    from meltdem.analysis.rosenthal import rosenthal, width_at_depth, gaussian_transient
     a = K / (RHO * CP)
     q = ETA * POWER
     w_ros = width_at_depth(lambda xi, y, z: rosenthal(xi, y, z, q, K, a, SPEED, T0), TMELT, -1e-7,
@@ -476,8 +425,9 @@ def references(meta):
     t = 1e-3
     best = 0.0
     for xi in np.linspace(-200e-6, 50e-6, 51):
-        g = lambda y: gaussian_transient(SPEED * t + xi, y, -1e-7, t, q, K, a, RHO * CP, T0, SPOT / 2, 0.0,  # noqa: E731
-                                         SPEED, nt=2000)
+        def g(y):
+            return gaussian_transient(SPEED * t + xi, y, -1e-7, t, q, K, a, RHO * CP, T0, SPOT / 2, 0.0,
+                                      SPEED, nt=2000)
         if g(0.0) < TMELT:
             continue
         lo, hi = 0.0, 300e-6
@@ -573,6 +523,14 @@ def main(argv=None):
     if a.command in ("analyse", "all"):
         analyse(case)
     return 0
+
+
+SCENE = Scene(name="slm-track", kind="coupled",
+              title="SLM track over a generated powder bed (Codina2019 §4.2.2, tables 4.5 / 4.6)",
+              ci_time='166 s wall', full_time=None,
+              build=lambda case, size: main(["build", case, f"--{size}"]),
+              analyse=lambda case: main(["analyse", case]),
+              summary=analyse)
 
 
 if __name__ == "__main__":

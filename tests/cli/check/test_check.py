@@ -32,8 +32,8 @@ import shutil
 import sys
 import tempfile
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
-from clitest import SRC, build_example, check_absolute, meltdem  # noqa: E402
+from meltdem.testing.cli import SRC, build_example, check_absolute, meltdem
+from meltdem.testing.cli import meltdem_command
 
 T = "cli.check"
 ok = True
@@ -109,7 +109,8 @@ broken("powder/melt keyword missing", ded,
        lambda c: sub(os.path.join(c, "in.particles"), r" latent \S+", ""),
        ["in.particles:", "powder/melt", "latent"])
 broken("negative gas conductivity", ded,
-       lambda c: sub(os.path.join(c, "constant/meltdemProperties"), r"^gas \{ cp (\S+); k \S+; \}", r"gas { cp \1; k -0.026; }"),
+       lambda c: sub(os.path.join(c, "constant/meltdemProperties"), r"^gas \{ cp (\S+); k \S+; \}",
+                     r"gas { cp \1; k -0.026; }"),
        ["constant/meltdemProperties:", "gas.k = -0.026 must be positive"])
 broken("gravity mismatch", ded,
        lambda c: sub(os.path.join(c, "in.particles"), r"^fix gravity all gravity 9.81", "fix gravity all gravity 3.71"),
@@ -174,7 +175,6 @@ if os.geteuid() == 0 and shutil.which("setpriv"):
                 os.chmod(os.path.join(r, f), 0o644)
     as_user = ["setpriv", "--reuid=65534", "--regid=65534", "--clear-groups"]
 import subprocess  # noqa: E402
-from clitest import meltdem_command  # noqa: E402
 p = subprocess.run(as_user + meltdem_command() + ["check", unread], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
                    text=True, timeout=300)
 print(f"--- an unreadable file\n{p.stdout}{p.stderr}")

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Kill a coupled run mid-way, resume it, compare with an uninterrupted run (issue 7).
+"""Kill a coupled run mid-way, resume it, compare with an uninterrupted run.
 
 The case is examples/pbf-point's CI case (100 grains on a substrate under the laser) cut to
 9 us with a write time every 3 us and binary fields (OpenFOAM resumes from the fields as
@@ -22,11 +22,12 @@ import time
 
 import numpy as np
 
-SRC = os.environ["MELTDEM_SOURCE_DIR"]
-BIN = os.environ["MELTDEM_BIN"]
-sys.path.insert(0, os.path.join(SRC, "tests", "support"))
-from meltdem_report import check_absolute, check_at_least, check_at_most, check_relative  # noqa: E402
-import foamcase as fc  # noqa: E402
+from meltdem import paths
+from meltdem.case import foam as fc
+from meltdem.testing.report import check_absolute, check_at_least, check_at_most, check_relative
+
+SRC = paths.source_dir()
+BIN = paths.bin_dir()
 
 TEST = "cli.kill_resume"
 END, WRITE = 9e-06, 3e-06

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Runs killed at several points and resumed with `meltdem run CASE --resume` equal the
-uninterrupted run (issue 17). Each kind of case runs once uninterrupted (the reference), then
+uninterrupted run. Each kind of case runs once uninterrupted (the reference), then
 three copies are killed with SIGKILL to their process group, as a batch system would:
 
   between   between two checkpoints (past the second write time, before the third),
@@ -40,12 +40,12 @@ import time
 
 import numpy as np
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, os.path.join(HERE, ".."))
-from clitest import SRC, check_absolute, check_at_most, meltdem_command  # noqa: E402
+from meltdem.case import foam as fc
+from meltdem.io import casedata
+from meltdem.testing.cli import SRC, check_absolute, check_at_most, meltdem_command
 
-sys.path.insert(0, os.path.join(SRC, "tools"))
-from meltdem_cli import casedata  # noqa: E402
+HERE = os.path.dirname(os.path.abspath(__file__))
+
 
 KIND = sys.argv[1]
 T = f"cli.kill_resume.{KIND}"
@@ -126,10 +126,14 @@ def kill_when(p, cond, limit=600):
 # kill points: (condition on the case, what it is)
 if KIND == "dem":
     B1, B2, W = 60000, 100000, 120000
-    between = lambda c: progress(c) >= B1 and os.path.isfile(os.path.join(c, "meltdemRestart", str(B1), "complete"))  # noqa: E731
+
+    def between(c):
+        return progress(c) >= B1 and os.path.isfile(os.path.join(c, "meltdemRestart", str(B1), "complete"))
 else:
     B1, B2, W = 2 * WRITE, 2.5 * WRITE, 2 * WRITE
-    between = lambda c: progress(c) >= 2.5 * WRITE  # noqa: E731
+
+    def between(c):
+        return progress(c) >= 2.5 * WRITE
 SCENARIOS = {
     "between": [between],
     "write": [lambda c: write_started(c, W)],
@@ -215,13 +219,11 @@ for name, kills in SCENARIOS.items():
             return d[:, cols.index("z")], d[:, cols.index("radius")]
         (za, ra_), (zb, rb_) = bed(whole), bed(case)
         ok &= check_absolute(T, f"{name}: grains at the end", len(zb), len(za), 0)
-        ok &= check_absolute(T, f"{name}: grain volume at the end [m3]", float(np.sum(rb_ ** 3)), float(np.sum(ra_ ** 3)),
-                             1e-12 * float(np.sum(ra_ ** 3)))
+        ok &= check_absolute(T, f"{name}: grain volume at the end [m3]", float(np.sum(rb_ ** 3)),
+                             float(np.sum(ra_ ** 3)), 1e-12 * float(np.sum(ra_ ** 3)))
         top = float(np.max(za + ra_))
         ok &= check_at_most(T, f"{name}: mean grain height at the end, |resumed - uninterrupted| / bed height",
                             abs(float(np.mean(zb)) - float(np.mean(za))) / top, 0.01)
 
-sys.path.insert(0, os.path.join(SRC, "tests", "support"))
-import foamcase as fc  # noqa: E402
 
 sys.exit(fc.finish(ok, work))

@@ -3,8 +3,7 @@
 import os
 import sys
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
-from clitest import SRC, check_absolute, meltdem  # noqa: E402
+from meltdem.testing.cli import SRC, check_absolute, meltdem
 
 T = "cli.list"
 ex = os.path.join(SRC, "examples")

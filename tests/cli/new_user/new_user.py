@@ -16,11 +16,12 @@ import sys
 import tempfile
 import xml.etree.ElementTree as ET
 
-SRC = os.environ["MELTDEM_SOURCE_DIR"]
-BIN = os.environ["MELTDEM_BIN"]
-sys.path.insert(0, os.path.join(SRC, "tests", "support"))
-from meltdem_report import check_absolute, check_at_least, check_at_most  # noqa: E402
-import foamcase as fc  # noqa: E402
+from meltdem import paths
+from meltdem.case import foam as fc
+from meltdem.testing.report import check_absolute, check_at_least, check_at_most
+
+SRC = paths.source_dir()
+BIN = paths.bin_dir()
 
 TEST = "cli.new_user"
 GRAINS, END, BOX_XY, DIAMETER = 300, 1e-3, 3e-4, 30e-6   # examples/powder-pour/in.pour

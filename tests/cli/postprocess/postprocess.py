@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""meltdem post (tools/meltdem_cli/post.py) on real runs, checked against the files the run wrote:
+"""meltdem post (python/meltdem/cli/post.py) on real runs, checked against the files the run wrote:
 
 (a) coupled: the CI pbf-point scene (examples/pbf-point) cut to 8 us (grains start melting at
     7.2 us), serial: VTK/fields.pvd and VTK/particles.pvd parse, every file they name exists
@@ -24,14 +24,17 @@ import xml.etree.ElementTree as ET
 
 import numpy as np
 
-SRC = os.environ["MELTDEM_SOURCE_DIR"]
-sys.path.insert(0, os.path.join(SRC, "tests", "support"))
-sys.path.insert(0, os.path.join(SRC, "tools"))
-sys.path.insert(0, os.path.join(SRC, "examples", "pbf-point"))
-from meltdem_report import check_absolute, check_at_least, check_at_most, check_relative, report  # noqa: E402
-import foamcase as fc  # noqa: E402
-import pbf  # noqa: E402
-from meltdem_cli import post, vtkxml  # noqa: E402
+from meltdem import paths
+from meltdem.case import foam as fc
+from meltdem.cli import post
+from meltdem.io import vtkxml
+from meltdem.loader import load_module
+from meltdem.paths import examples_dir
+from meltdem.testing.report import check_absolute, check_at_least, check_at_most, check_relative, report
+
+SRC = paths.source_dir()
+
+pbf = load_module(os.path.join(examples_dir(), "pbf-point", "pbf.py"))
 
 TEST = "cli.postprocess"
 END, WRITE = 8e-6, 2e-6
@@ -108,7 +111,7 @@ def coupled(work):
     tds = fc.time_dirs(case)
     ok &= check_absolute(TEST, "coupled: fields.pvd entries vs OpenFOAM write times", len(entries), len(tds), 0)
     ok &= check_absolute(TEST, "coupled: last field time [s] vs last write time", entries[-1][0], float(tds[-1]), 1e-12)
-    from meltdem_cli import vtk_fields
+    from meltdem.io import vtk_fields
     _, f, piece = vtk_fields.read_internal(entries[-1][1])
     nc = n_cells(case)
     ok &= check_absolute(TEST, "coupled: cells of the last internal .vtu vs the mesh's (polyMesh/owner)",
@@ -133,7 +136,8 @@ def coupled(work):
         ok &= check_at_most(TEST, f"coupled: max |position in .vtp {k} - dump| [m]",
                             float(np.max(np.abs(p["points"] - xyz))), 0.0)
         ok &= check_at_most(TEST, f"coupled: max |temperature in .vtp {k} - dump f_melt[1]| [K]",
-                            float(np.max(np.abs(p["point_data"]["temperature"] - data[:, cols.index("f_melt[1]")]))), 0.0)
+                            float(np.max(np.abs(p["point_data"]["temperature"] - data[:, cols.index("f_melt[1]")]))),
+                            0.0)
         ok &= check_at_most(TEST, f"coupled: max |diameter - 2 radius| in .vtp {k} [m]",
                             float(np.max(np.abs(p["point_data"]["diameter"] - 2 * data[:, cols.index("radius")]))), 0.0)
 
@@ -183,10 +187,10 @@ def decomposed(work, case, a_foam, nc):
     ok = good
     ok &= check_absolute(TEST, "decomposed: last field time [s] vs the processors' last time", entries[-1][0],
                          float(last), 1e-12)
-    from meltdem_cli import vtk_fields
+    from meltdem.io import vtk_fields
     _, f, piece = vtk_fields.read_internal(entries[-1][1])
-    ok &= check_absolute(TEST, "decomposed: cells of the gathered .vtu vs the mesh's", int(piece["attrib"]["NumberOfCells"]),
-                         nc, 0)
+    ok &= check_absolute(TEST, "decomposed: cells of the gathered .vtu vs the mesh's",
+                         int(piece["attrib"]["NumberOfCells"]), nc, 0)
     ok &= check_relative(TEST, "decomposed: sum of alpha.metal over the cells vs the serial time folder",
                          float(np.sum(f["alpha.metal"])), float(np.sum(a_foam)), 1e-6)
     errs = [n for n in s["meltdem_post"]["notes"] if n.startswith("fields")]
@@ -223,7 +227,7 @@ def dem_only(work):
     txt = re.sub(r"^run ", "dump            d all custom 2000 pour.dump id type x y z vx vy vz radius mass\nrun ",
                  txt, flags=re.M)
     open(os.path.join(case, "in.pour"), "w").write(txt)
-    subprocess.run([os.path.join(os.environ["MELTDEM_BIN"], "meltdem-lmp"), "-in", "in.pour", "-var", "nsteps", "20000",
+    subprocess.run([paths.binary("meltdem-lmp"), "-in", "in.pour", "-var", "nsteps", "20000",
                     "-log", "log.lammps", "-screen", "none"], cwd=case, check=True)
     s = post.postprocess(case)
     good, entries = check_pvd("dem", os.path.join(case, "VTK", "particles.pvd"))

@@ -7,10 +7,9 @@ import re
 import sys
 import tempfile
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
-from clitest import check_absolute  # noqa: E402
+from meltdem.testing.cli import check_absolute
 
-from meltdem_cli.progress import FoamProgress, LammpsProgress, fmt_eta, line  # noqa: E402
+from meltdem.cli.progress import FoamProgress, LammpsProgress, fmt_eta, line
 
 T = "cli.progress"
 ok = True

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Nothing lost, nothing silent (issue 17), with the real solver:
+"""Nothing lost, nothing silent, with the real solver:
 
 1. One run per case folder. ded-stream's CI case cut to 8 us runs with `meltdem run`; while it
    runs, a second `meltdem run` of the same folder and a meltdemFoam started by hand in it stop
@@ -10,7 +10,7 @@
    write times: the run stops with 'the disk holding the case is full' (exit 1, no Python
    traceback), no incomplete write time is marked complete; after the tmpfs is enlarged,
    `meltdem run --resume` ends with the ledger of an uninterrupted run, row for row.
-3. Lost grains. The thesis 2.3 channel (tests/coupling/thesis_particle) with powder inserted
+3. Lost grains. The Codina2019 §2.3 channel (tests/coupling/thesis_particle) with powder inserted
    above the mesh (check skipped): the run warns that the grains left the mesh at once, and the
    summary counts them ('particles lost').
 4. Momentum. The same channel without gravity, walls or solid-metal contact: the summary shows
@@ -22,18 +22,18 @@ import json
 import os
 import re
 import shutil
-import signal
 import subprocess
 import sys
 import tempfile
 import time
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, os.path.join(HERE, ".."))
-from clitest import SRC, build_example, check_absolute, check_at_least, meltdem_command  # noqa: E402
+from meltdem import paths
+from meltdem.case import coupled as cc
+from meltdem.case import foam as fc
+from meltdem.testing.cli import SRC, build_example, check_absolute, check_at_least, meltdem_command
 
-sys.path.insert(0, os.path.join(SRC, "tests", "support"))
-sys.path.insert(0, os.path.join(SRC, "tests", "coupling"))
+HERE = os.path.dirname(os.path.abspath(__file__))
+
 import importlib.util  # noqa: E402
 
 T = "cli.reliability"
@@ -91,10 +91,11 @@ ok &= check_absolute(T, "second meltdem run: names the running process (pid, mel
                      int(re.search(r"another run is using the case .*pid \d+", err2) is not None), 1, 0)
 env = dict(os.environ, WM_PROJECT_DIR=os.environ.get("WM_PROJECT_DIR", "/usr/share/openfoam"))
 env.pop("MELTDEM_CASE_LOCK", None)
-by_hand = subprocess.run([os.path.join(os.environ["MELTDEM_BIN"], "meltdemFoam")], cwd=case, env=env,
+by_hand = subprocess.run([paths.binary("meltdemFoam")], cwd=case, env=env,
                          stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, timeout=120)
 print("meltdemFoam by hand:", by_hand.stdout[-1500:])
-ok &= check_absolute(T, "meltdemFoam started by hand in the running case: exit code", int(by_hand.returncode != 0), 1, 0)
+ok &= check_absolute(T, "meltdemFoam started by hand in the running case: exit code", int(by_hand.returncode != 0),
+                     1, 0)
 ok &= check_absolute(T, "meltdemFoam by hand: names the running process",
                      int("another run is using the case" in by_hand.stdout and "pid" in by_hand.stdout), 1, 0)
 rc1 = first.wait(timeout=600)
@@ -164,7 +165,6 @@ spec = importlib.util.spec_from_file_location("thesis_particle", os.path.join(SR
                                                                               "thesis_particle", "thesis_particle.py"))
 tp = importlib.util.module_from_spec(spec)
 spec.loader.exec_module(tp)
-import coupledcase as cc  # noqa: E402
 
 LX, LY, LZ = cc.CHANNEL["lx"], cc.CHANNEL["ly"], cc.CHANNEL["lz"]
 
@@ -219,7 +219,6 @@ ok &= check_absolute(T, "gravity on the grains: momentum balance not shown",
 ok &= check_absolute(T, "gravity on the grains: the summary says why",
                      int("momentum balance not shown" in md and "gravity on the particles" in md), 1, 0)
 
-import foamcase as fc  # noqa: E402
 
 rc = fc.finish(ok, work)
 sys.exit(77 if rc == 0 and skipped else rc)

@@ -14,13 +14,13 @@ import shutil
 import sys
 import tempfile
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, os.path.join(HERE, ".."))
-from clitest import SRC, build_example, check_absolute, meltdem  # noqa: E402
+from meltdem.cli import run as mrun
+from meltdem.cli.examples import StepError
+from meltdem.io import foamdict as fd
+from meltdem.testing.cli import SRC, build_example, check_absolute, meltdem
 
-from meltdem_cli import foamdict as fd  # noqa: E402
-from meltdem_cli import run as mrun  # noqa: E402
-from meltdem_cli.examples import StepError  # noqa: E402
+HERE = os.path.dirname(os.path.abspath(__file__))
+
 
 T = "cli.resume"
 ok = True
@@ -54,7 +54,8 @@ def error_of(fn, *a):
 rc, out, err = meltdem("run", case, "--resume", "--no-analyse")
 print(out, err)
 ok &= check_absolute(T, "no meltdemRestart/: exit code", rc, 1, 0)
-ok &= check_absolute(T, "no meltdemRestart/: the message names it", int("meltdemRestart" in err and "cannot resume" in err), 1, 0)
+ok &= check_absolute(T, "no meltdemRestart/: the message names it",
+                     int("meltdemRestart" in err and "cannot resume" in err), 1, 0)
 checkpoint("3e-06", complete=False)
 e = error_of(mrun.latest_checkpoint, case)
 print(e)
@@ -71,7 +72,8 @@ seen = json.load(open(os.path.join(case, "fake_started.json")))
 ok &= check_absolute(T, "resume: exit code", rc, 0, 0)
 ok &= check_absolute(T, "solver saw startFrom startTime", int(seen["startFrom"] == "startTime"), 1, 0)
 ok &= check_absolute(T, "solver saw startTime [s]", float(seen["startTime"]), 2e-6, 0)
-ok &= check_absolute(T, "no meshing on resume (no log.blockMesh)", int(os.path.exists(os.path.join(case, "log.blockMesh"))), 0, 0)
+ok &= check_absolute(T, "no meshing on resume (no log.blockMesh)",
+                     int(os.path.exists(os.path.join(case, "log.blockMesh"))), 0, 0)
 prog = re.findall(r"^t = (\S+) / (\S+) s \((\d+) %\)", out, re.M)
 ok &= check_absolute(T, "last progress line: t [s]", float(prog[-1][0]) if prog else 0, 2e-5, 1e-12)
 cd = fd.read(os.path.join(case, "system", "controlDict"))

@@ -10,10 +10,9 @@ import shutil
 import sys
 import tempfile
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
-from clitest import check_absolute, meltdem  # noqa: E402
+from meltdem.testing.cli import check_absolute, meltdem
 
-from meltdem_cli import foamdict as fd  # noqa: E402
+from meltdem.io import foamdict as fd
 
 T = "cli.run.ded_stream"
 work = tempfile.mkdtemp(prefix="cli_coupled_")
@@ -22,7 +21,8 @@ ok = True
 rc, out, err = meltdem("run", "ded-stream", "--case", case, cwd=work, timeout=280)
 print(out, err)
 ok &= check_absolute(T, "exit code", rc, 0, 0)
-log = open(os.path.join(case, "log.meltdemFoam")).read() if os.path.isfile(os.path.join(case, "log.meltdemFoam")) else ""
+log = (open(os.path.join(case, "log.meltdemFoam")).read() if os.path.isfile(os.path.join(case, "log.meltdemFoam"))
+       else "")
 ok &= check_absolute(T, "log.meltdemFoam ends with End", int(bool(re.search(r"^End\s*$", log, re.M))), 1, 0)
 ok &= check_absolute(T, "blockMesh ran (log.blockMesh)", int(os.path.isfile(os.path.join(case, "log.blockMesh"))), 1, 0)
 t_end = fd.number(fd.read(os.path.join(case, "system", "controlDict")), "endTime")

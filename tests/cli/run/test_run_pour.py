@@ -9,8 +9,7 @@ import shutil
 import sys
 import tempfile
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
-from clitest import SRC, check_absolute, check_at_least, meltdem  # noqa: E402
+from meltdem.testing.cli import SRC, check_absolute, check_at_least, meltdem
 
 np_ = int(sys.argv[1]) if len(sys.argv) > 1 else 1
 T = "cli.run.powder_pour" + (f".np{np_}" if np_ > 1 else "")
@@ -37,7 +36,8 @@ ok &= check_absolute(T, "last progress line: percent", int(last[2]), 100, 0)
 bad = os.path.join(work, "bad")
 os.makedirs(bad)
 inp = open(os.path.join(SRC, "examples", "powder-pour", "in.pour")).read()
-open(os.path.join(bad, "in.pour"), "w").write(inp.replace("run             ${nsteps}", "fix oops all no/such/style\nrun 10"))
+open(os.path.join(bad, "in.pour"), "w").write(inp.replace("run             ${nsteps}",
+                                                          "fix oops all no/such/style\nrun 10"))
 rc, out, err = meltdem("run", bad, "--np", str(np_))
 print(out, err)
 line = [ln for ln in err.splitlines() if ln.startswith("meltdem: ERROR")]

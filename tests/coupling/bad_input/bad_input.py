@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
-"""Bad input to the coupled solver (issue 5): a clear message before the first step.
+"""Bad input to the coupled solver: a clear message before the first step.
 
-The thesis 2.3 case (tests/coupling/thesis_particle, build()) with a short end time runs
+The Codina2019 §2.3 case (tests/coupling/thesis_particle, build()) with a short end time runs
 cleanly; each variant breaks one thing (the LAMMPS input, the particles sub-dictionary, the
 metal data, the switches) and runs meltdemFoam serially under a time limit. A variant passes
 when the solver
@@ -25,17 +25,17 @@ import subprocess
 import sys
 import tempfile
 
-src = os.environ["MELTDEM_SOURCE_DIR"]
-sys.path.insert(0, os.path.join(src, "tests", "support"))
-from meltdem_report import check_at_most, report  # noqa: E402
-import foamcase as fc  # noqa: E402
+from meltdem import paths
+from meltdem.case import coupled as cc
+from meltdem.case import foam as fc
+from meltdem.testing.report import check_at_most, report
+
+src = paths.source_dir()
 
 _spec = importlib.util.spec_from_file_location(
     "thesis_particle", os.path.join(src, "tests", "coupling", "thesis_particle", "thesis_particle.py"))
 tp = importlib.util.module_from_spec(_spec)
 _spec.loader.exec_module(tp)
-sys.path.insert(0, os.path.join(src, "tests", "coupling"))
-import coupledcase as cc  # noqa: E402
 
 LX, LY, LZ = cc.CHANNEL["lx"], cc.CHANNEL["ly"], cc.CHANNEL["lz"]
 
@@ -222,7 +222,7 @@ def message(out):
     i = out.find("FOAM FATAL")
     if i >= 0:
         return out[i:]
-    return "\n".join(l for l in out.splitlines() if "ERROR" in l or l.startswith("Last command"))
+    return "\n".join(line for line in out.splitlines() if "ERROR" in line or line.startswith("Last command"))
 
 
 def main():
@@ -251,7 +251,7 @@ def main():
         killed = (rc is None or rc < 0 or rc >= 128
                   or re.search(r"Foam::sigSegv|Foam::sigFpe|printStack|Segmentation fault", out))
         named = bool(text) and all(w in text for w in words)
-        first = " ".join(l.strip() for l in text.splitlines()[:6] if l.strip())[:200] if text else out[-200:]
+        first = " ".join(line.strip() for line in text.splitlines()[:6] if line.strip())[:200] if text else out[-200:]
         print(f"{name}: rc {rc}; {first!r}")
         ok &= report(test, f"{what}: stops with a message holding {words}",
                      f"rc {rc}, {'signal/timeout' if killed else 'exit'}, "

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
-"""A particle 4x larger than a cell melting in the coupled solver (thesis 3.2.3, fig. 3.7).
+"""A particle 4x larger than a cell melting in the coupled solver (Codina2019 §3.2.3, fig. 3.7).
 
-Channel 1.8 x 3 x 1.8 mm of 0.15 mm cells (12 x 20 x 12); hot gas (thesis 2.3 argon, 1500 K)
+Channel 1.8 x 3 x 1.8 mm of 0.15 mm cells (12 x 20 x 12); hot gas (Codina2019 §2.3 argon, 1500 K)
 flows down at 2 m/s past a particle of d = 0.6 mm (4 cells across) held at the channel centre.
 The particle (rho 8020, cp 48.35, Tm 1000 K) starts at 900 K with a latent heat of 2.7e4 J/kg,
 so that it melts within ~2 ms: the point is the deposit, not the heating. The fluid step is
@@ -9,16 +9,15 @@ Courant-limited (maxCo 0.25). With `centre` the whole grain lands in one cell (V
 the metal volume fraction would reach 33); `overlap` spreads it over the 85 cells it covers,
 `neighbours` over the centre cell and its 6 face neighbours (V_p / 7 = 4.7 cells per cell).
 
-neighbours stops at once (issue 6: run with closed balances, or stop at once naming the knob):
+neighbours stops at once (run with closed balances, or stop at once naming the knob):
 its 7 cells of this gas hold 1/25 of the heat the grain takes in one fluid step (their heat
 capacity over the grain's conductance is 5e-7 s, the step 1.9e-5 s), so the explicit exchange
-would cool them far below both the gas and the grain (it ran to 134 K in 800-1500 K before the
-guard): checked that the run stops after the first step with the message naming maxDeltaT and
-distribution overlap, and that no NaN appeared.
+would cool them far below both the gas and the grain: checked that the run stops after the first
+step with the message naming maxDeltaT and distribution overlap, and that no NaN appeared.
 
 Checks per model (label coupling):
   - no time-step collapse: the smallest fluid step while melting >= 1/2 of the step before the
-    melting starts (thesis fig. 3.7 shows the collapse);
+    melting starts (Codina2019 fig. 3.7 shows the collapse);
   - the metal volume fraction stays <= 1 + 1e-6 (what no cell can hold is a defect, not physics);
   - balances closed: worst per-step continuum mass / energy / momentum errors <= 1e-13 / 1e-6 /
     1e-7 and all the metal handed over (relative 1e-12). Momentum misses (1e-5, booked XFAIL).
@@ -34,11 +33,9 @@ import tempfile
 
 import numpy as np
 
-sys.path.insert(0, os.path.join(os.environ["MELTDEM_SOURCE_DIR"], "tests", "support"))
-sys.path.insert(0, os.path.join(os.environ["MELTDEM_SOURCE_DIR"], "tests", "coupling"))
-from meltdem_report import check_absolute, check_at_most, check_relative  # noqa: E402
-import coupledcase as cc  # noqa: E402
-import foamcase as fc  # noqa: E402
+from meltdem.testing.report import check_absolute, check_at_most, check_relative
+from meltdem.case import coupled as cc
+from meltdem.case import foam as fc
 
 D, RHO_P = 600e-6, 8020.0
 M_P = RHO_P * np.pi * D**3 / 6
@@ -47,14 +44,14 @@ CHANNEL = dict(lx=1.8e-3, ly=3.0e-3, lz=1.8e-3, h=0.15e-3)
 T_END = 1.2e-3
 
 # models whose deposit overfills cells at 4 cells per diameter: the honest expected failure
-# (centre: every check; neighbours: the time step only -- measured 4.5x, the metal is carried
-# off fast enough that no cell overfills, max alpha 0.96)
+# (centre: every check; neighbours: the time step only -- the metal is carried off fast enough
+# that no cell overfills)
 XFAIL = {"centre": "centre puts the whole grain (33 cell volumes) into one cell"}
 # models that must stop at once with a message naming the knobs
 STOPS = {"neighbours": ("maxDeltaT", "distribution overlap")}
-# measured 1.1e-5 (overlap): the metal volume source drives a pressure field, and interFoam's
-# pressure-corrected velocity U = HbyA - rAU grad(p) is not momentum-conservative there; the
-# thesis channel (uniform flow, metal in one cell) closes to 1.2e-9
+# overlap: the metal volume source drives a pressure field, and interFoam's pressure-corrected
+# velocity U = HbyA - rAU grad(p) is not momentum-conservative there; the Codina2019 channel
+# (uniform flow, metal in one cell) closes
 XFAIL_MOMENTUM = ("PISO velocity correction is not momentum-conservative where the metal volume "
                   "source drives a pressure field (1e-5 per step); the thesis channel closes to 1e-9")
 

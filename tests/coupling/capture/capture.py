@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""A particle entering liquid metal is captured and melts (issue 5 item 3).
+"""A particle entering liquid metal is captured and melts.
 
 Box 2 x 2 x 2 mm of 0.2 mm cells; a liquid steel pool (alpha = 1, 1800 K, above Tliquidus
 1700 K) fills y < 0.6 mm; gas at rest, gravity off. A d = 100 um steel grain at 300 K comes
@@ -15,17 +15,16 @@ import tempfile
 
 import numpy as np
 
-sys.path.insert(0, os.path.join(os.environ["MELTDEM_SOURCE_DIR"], "tests", "support"))
-sys.path.insert(0, os.path.join(os.environ["MELTDEM_SOURCE_DIR"], "tests", "coupling"))
-from meltdem_report import check_at_most, check_relative  # noqa: E402
-import coupledcase as cc  # noqa: E402
-import foamcase as fc  # noqa: E402
+from meltdem.testing.report import check_at_most, check_relative
+from meltdem.case import coupled as cc
+from meltdem.case import foam as fc
 
 TEST = "coupling.capture"
 D, POOL, V0 = 100e-6, 0.6e-3, 0.3
 M_P = 7800.0 * np.pi * D**3 / 6
 PARTICLE = dict(d=D, rho=7800.0, cp=500.0, Tm=1700.0, L=2.7e5, T0=300.0, y=0.8e-3, v=(0.0, -V0, 0.0))
 GAS = dict(rho=1.2, mu=1.8e-5, cp=1005.0, k=0.026, T=300.0)
+
 
 def main():
     keep = "--keep" in sys.argv

@@ -1,11 +1,11 @@
 #!/usr/bin/env python3
-"""Powder inserted during a coupled run (issue 6, the ledger's feed and pending store).
+"""Powder inserted during a coupled run (the ledger's feed and pending store).
 
-The thesis 2.3 channel (hot argon flowing down at 2 m/s, 0.7 mm cells) with fix powder/insert
+The Codina2019 §2.3 channel (hot argon flowing down at 2 m/s, 0.7 mm cells) with fix powder/insert
 feeding steel grains (d 80-120 um, 300 K, at the gas speed) into a slab under the inlet at
 5000 grains/s, no gravity, for 4 ms: grains are drawn, wait in the pending queue until the
-next DEM step places them, heat in the gas (its conductivity is the thesis's artificial 100 W/m/K) and melt. The ledger must book
-every drawn grain as feed and the queue as the pending store, so that the whole system
+next DEM step places them, heat in the gas (its conductivity is Codina2019's artificial 100 W/m/K)
+and melt. The ledger must book every drawn grain as feed and the queue as the pending store, so that the whole system
 (particles + continuum + pending) closes per step to round-off in mass and energy, and its
 feed totals equal what LAMMPS says it drew (fix powder/insert vector: inserted + pending).
 """
@@ -16,11 +16,9 @@ import tempfile
 
 import numpy as np
 
-sys.path.insert(0, os.path.join(os.environ["MELTDEM_SOURCE_DIR"], "tests", "support"))
-sys.path.insert(0, os.path.join(os.environ["MELTDEM_SOURCE_DIR"], "tests", "coupling"))
-from meltdem_report import check_at_least, check_at_most, check_relative  # noqa: E402
-import coupledcase as cc  # noqa: E402
-import foamcase as fc  # noqa: E402
+from meltdem.testing.report import check_at_least, check_at_most, check_relative
+from meltdem.case import coupled as cc
+from meltdem.case import foam as fc
 
 TEST = "coupling.insertion"
 RHO, CP, TM, L = 7900.0, 500.0, 1000.0, 2.7e5
@@ -76,8 +74,8 @@ def main():
     ok &= check_at_least(TEST, "steps ending with a non-empty pending store",
                          np.count_nonzero(led["mass_pending"] > 0), 1)
     ok &= check_relative(TEST, "metal handed to the continuum vs drawn + first grain - still in grains or pending [kg]",
-                         float(np.sum(led["mass_exchange"])), drawn + M0 - pending_mass_now(led) - particle_mass_now(led),
-                         1e-12)
+                         float(np.sum(led["mass_exchange"])),
+                         drawn + M0 - pending_mass_now(led) - particle_mass_now(led), 1e-12)
     ok &= check_at_most(TEST, "worst per-step system mass error", np.max(np.abs(steps["mass_system_error"])), 1e-13)
     ok &= check_at_most(TEST, "worst per-step system energy error",
                         np.max(np.abs(steps["enthalpy_system_error"])), 1e-9)

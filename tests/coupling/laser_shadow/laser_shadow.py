@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Particles in the laser beam absorb their share and shadow the continuum: the total absorbed
-power stays eta P (issue 5 item 3; coupling/laser_shadowing.h).
+power stays eta P (coupling/laser_shadowing.h).
 
 Box 2 x 2 x 2 mm of 0.2 mm cells; a solid steel floor fills y < 0.6 mm; gas at rest. A laser
 (P = 100 W, eta = 0.5, 1/e^2 radius w = 200 um) points down (-y) at the box centre. Two
@@ -18,11 +18,9 @@ import tempfile
 
 import numpy as np
 
-sys.path.insert(0, os.path.join(os.environ["MELTDEM_SOURCE_DIR"], "tests", "support"))
-sys.path.insert(0, os.path.join(os.environ["MELTDEM_SOURCE_DIR"], "tests", "coupling"))
-from meltdem_report import check_at_most, check_relative  # noqa: E402
-import coupledcase as cc  # noqa: E402
-import foamcase as fc  # noqa: E402
+from meltdem.testing.report import check_at_most, check_relative
+from meltdem.case import coupled as cc
+from meltdem.case import foam as fc
 
 TEST = "coupling.laser_shadow"
 D, P, ETA, W = 100e-6, 100.0, 0.5, 200e-6

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
-"""A particle that leaves the mesh is booked as outflow, never dropped silently (issue 5).
+"""A particle that leaves the mesh is booked as outflow, never dropped silently.
 
-The thesis channel shortened to 2.1 x 2.1 x 2.1 mm; a cold d = 100 um grain (no melting)
+The Codina2019 channel shortened to 2.1 x 2.1 x 2.1 mm; a cold d = 100 um grain (no melting)
 rides the gas down at 2 m/s from y = 0.5 mm and crosses the outlet after ~0.25 ms. The
 coupling removes it from LAMMPS when its centre leaves the mesh and books its mass, enthalpy
 and momentum as lost (outflow). Checks: one particle booked lost; the lost mass equals its
@@ -14,11 +14,9 @@ import tempfile
 
 import numpy as np
 
-sys.path.insert(0, os.path.join(os.environ["MELTDEM_SOURCE_DIR"], "tests", "support"))
-sys.path.insert(0, os.path.join(os.environ["MELTDEM_SOURCE_DIR"], "tests", "coupling"))
-from meltdem_report import check_absolute, check_at_most, check_relative  # noqa: E402
-import coupledcase as cc  # noqa: E402
-import foamcase as fc  # noqa: E402
+from meltdem.testing.report import check_absolute, check_at_most, check_relative
+from meltdem.case import coupled as cc
+from meltdem.case import foam as fc
 
 TEST = "coupling.outflow"
 D, RHO = 100e-6, 7800.0
@@ -34,7 +32,8 @@ def main():
     cc.run_solver(case)
     d = cc.ledger(case)
     ok = check_absolute(TEST, "particles booked as lost (outflow)", np.sum(d["lost_particles"]), 1, 0)
-    ok &= check_relative(TEST, "mass booked as outflow vs particle mass [kg]", d["mass_cumulative_lost"][-1], M_P, 1e-12)
+    ok &= check_relative(TEST, "mass booked as outflow vs particle mass [kg]", d["mass_cumulative_lost"][-1], M_P,
+                         1e-12)
     ok &= check_absolute(TEST, "particles left at the end", d["particles"][-1], 0, 0)
     steps = d[1:]
     ok &= check_at_most(TEST, "worst per-step system mass error", np.max(np.abs(steps["mass_system_error"])), 1e-13)

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """A particle settling in quiescent gas through the coupled solver vs the standalone 'ambient'
-mode of fix powder/melt (issue 5): the same terminal velocity within 2 %.
+mode of fix powder/melt: the same terminal velocity within 2 %.
 
 Box 4 x 4 x 4 mm of 0.5 mm cells, air at rest (rho 1.2, mu 1.8e-5, 300 K), gravity -9.81 in y
 in both codes. A steel grain d = 10 um (rho 7800, response time tau = rho d^2 / (18 mu) =
@@ -22,11 +22,10 @@ import tempfile
 
 import numpy as np
 
-sys.path.insert(0, os.path.join(os.environ["MELTDEM_SOURCE_DIR"], "tests", "support"))
-sys.path.insert(0, os.path.join(os.environ["MELTDEM_SOURCE_DIR"], "tests", "coupling"))
-from meltdem_report import check_absolute, check_relative  # noqa: E402
-import coupledcase as cc  # noqa: E402
-import foamcase as fc  # noqa: E402
+from meltdem import paths
+from meltdem.testing.report import check_absolute, check_relative
+from meltdem.case import coupled as cc
+from meltdem.case import foam as fc
 
 ISOTHERMAL = "--isothermal" in sys.argv
 TEST = "coupling.settling" + (".isothermal" if ISOTHERMAL else "")
@@ -34,6 +33,7 @@ D, RHO_P, RHO_G, MU_G, G = 10e-6, 7800.0, 1.2, 1.8e-5, 9.81
 T_END, AVERAGE = 15e-3, 2e-3
 PARTICLE = dict(d=D, rho=RHO_P, cp=500.0, Tm=5000.0, L=2.7e5, T0=1000.0 if ISOTHERMAL else 300.0, y=3e-3,
                 v=(0.0, 0.0, 0.0))
+
 
 def terminal(rows):
     last = rows[rows[:, 0] >= rows[-1, 0] - AVERAGE]
@@ -59,7 +59,7 @@ def main():
     text = re.sub(r"(fix melt all powder/melt .*)", r"\1 ambient 300 0.026 %r %r 1005 0 0 0" % (RHO_G, MU_G), text)
     text = text.replace("thermo 10", f"thermo 10\nrun {round(T_END / 1e-5)}")
     open(os.path.join(alone, "in.alone"), "w").write(text)
-    subprocess.run([os.path.join(os.environ["MELTDEM_BIN"], "meltdem-lmp"), "-in", "in.alone", "-log", "log.lammps",
+    subprocess.run([paths.binary("meltdem-lmp"), "-in", "in.alone", "-log", "log.lammps",
                     "-screen", "none"], cwd=alone, check=True)
     standalone = terminal(cc.track(os.path.join(alone, "log.lammps")))
     stokes = (RHO_P - RHO_G) * G * D * D / (18 * MU_G)
@@ -71,8 +71,10 @@ def main():
         pc = cc.particles_csv(case)
         h0 = PARTICLE["cp"] * PARTICLE["T0"] * (PARTICLE["rho"] * np.pi * D**3 / 6)
         print(f"{TEST}: particle enthalpy {pc['particle_enthalpy'][-1]!r} J (initial {h0!r}), heat absorbed "
-              f"{np.abs(pc['heat_absorbed']).max()!r} J, enthalpy handed over {np.abs(pc['enthalpy_handed_over']).max()!r} J")
-        ok &= check_relative(TEST, "isothermal grain: enthalpy at the end vs m cp T0 [J]", pc["particle_enthalpy"][-1], h0, 1e-12)
+              f"{np.abs(pc['heat_absorbed']).max()!r} J, enthalpy handed over "
+              f"{np.abs(pc['enthalpy_handed_over']).max()!r} J")
+        ok &= check_relative(TEST, "isothermal grain: enthalpy at the end vs m cp T0 [J]", pc["particle_enthalpy"][-1],
+                             h0, 1e-12)
         ok &= check_absolute(TEST, "isothermal grain: largest heat absorbed in a step [J]",
                              np.abs(pc["heat_absorbed"]).max(), 0.0, 0.0)
     return fc.finish(ok, work, keep)

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """A particle meeting the continuum's solid metal bounces off it as off a granular wall
-(issue 5 item 3; fix powder/melt solid_metal E* e).
+(fix powder/melt solid_metal E* e).
 
 Box 2 x 2 x 2 mm of 0.2 mm cells; a solid steel floor (alpha = 1, 300 K, below Tsolidus) fills
 y < 0.6 mm; gas at rest. A d = 100 um steel grain (no melting: Tm 1700 K, all at 300 K) comes
@@ -17,16 +17,15 @@ import tempfile
 
 import numpy as np
 
-sys.path.insert(0, os.path.join(os.environ["MELTDEM_SOURCE_DIR"], "tests", "support"))
-sys.path.insert(0, os.path.join(os.environ["MELTDEM_SOURCE_DIR"], "tests", "coupling"))
-from meltdem_report import check_at_most, check_relative  # noqa: E402
-import coupledcase as cc  # noqa: E402
-import foamcase as fc  # noqa: E402
+from meltdem.testing.report import check_at_most, check_relative
+from meltdem.case import coupled as cc
+from meltdem.case import foam as fc
 
 TEST = "coupling.solid_metal"
 D, FLOOR, E_REST, V0 = 100e-6, 0.6e-3, 0.5, 1.0
 PARTICLE = dict(d=D, rho=7800.0, cp=500.0, Tm=1700.0, L=2.7e5, T0=300.0, y=1.0e-3, v=(0.0, -V0, 0.0))
 GAS = dict(rho=1.2, mu=1.8e-5, cp=1005.0, k=0.026, T=300.0)
+
 
 def run(work, name, keywords):
     case = os.path.join(work, name)

@@ -1,23 +1,24 @@
 #!/usr/bin/env python3
-"""Thesis 2.3: one particle melting in a hot gas channel, through the coupled solver.
+"""Codina2019 §2.3: one particle melting in a hot gas channel, through the coupled solver.
 
 Channel 2.1 x 18.2 x 2.1 mm, 0.7 mm cells (3 x 26 x 3), gas rho 1.6115, cp 5210.928, k 100,
 T 1500 K flowing at U = (0, -2, 0) m/s (inlet at the top, outlet at the bottom, slip walls).
 Particle d = 600 um, rho 8020, cp 48.35, Tm = 1000 K, T0 = 0 K, moving with the gas, placed
 at y = 17.6 mm on the channel axis (the gas it cools slows the melt: it takes ~8 ms, not
-the 2.1 ms of a particle in gas held at 1500 K, so it starts near the inlet). It heats (Ranz-Marshall with the local gas), melts, and its
-metal appears in the VOF field, carried off by the gas. Gravity off (the thesis particle keeps
-U = -2 m/s: its momentum 1.814e-6 kg m/s is m 2 m/s).
+the 2.1 ms of a particle in gas held at 1500 K, so it starts near the inlet). It heats
+(Ranz-Marshall with the local gas), melts, and its metal appears in the VOF field, carried off by
+the gas. Gravity off (the Codina2019 particle keeps U = -2 m/s: its momentum 1.814e-6 kg m/s is
+m 2 m/s).
 
 Checks (measured / reference / tolerance, label coupling):
-  - per-step relative balance errors of the continuum (thesis eq. 2.20, 2.26, 2.36) from the
-    ledger: mass <= 1e-13, energy <= 1e-6, momentum <= 1e-7 (thesis: 2e-13, 1.5e-5, 1.5e-6);
+  - per-step relative balance errors of the continuum (Codina2019 eq. 2.20, 2.26, 2.36) from the
+    ledger: mass <= 1e-13, energy <= 1e-6, momentum <= 1e-7 (Codina2019: 2e-13, 1.5e-5, 1.5e-6);
   - integrated heat: sensible = total heat absorbed - L * melted mass vs m cp Tm, latent
     (L * melted mass) vs 0.248611 J, each within 1e-4. L is chosen so that m L = 0.248611 J for
-    the particle's exact mass m = rho pi d^3 / 6 = 9.0704e-7 kg (the thesis rounds to 9.069e-7);
+    the particle's exact mass m = rho pi d^3 / 6 = 9.0704e-7 kg (Codina2019 rounds to 9.069e-7);
   - everything melted: the metal mass handed over equals m (1e-12), the continuum holds it;
   - the momentum handed over vs m 2 m/s = 1.814e-6 kg m/s (1e-3: the particle keeps U).
-Writes the ledger plot (thesis fig. 2.3-2.14 layout) to the report folder.
+Writes the ledger plot (Codina2019 fig. 2.3-2.14 layout) to the report folder.
 usage: thesis_particle.py [--np N] [--model centre|neighbours|overlap] [--keep] [--compare-serial]
 """
 import argparse
@@ -29,11 +30,10 @@ import tempfile
 
 import numpy as np
 
-sys.path.insert(0, os.path.join(os.environ["MELTDEM_SOURCE_DIR"], "tests", "support"))
-sys.path.insert(0, os.path.join(os.environ["MELTDEM_SOURCE_DIR"], "tests", "coupling"))
-from meltdem_report import check_at_most, check_relative  # noqa: E402
-import coupledcase as cc  # noqa: E402
-import foamcase as fc  # noqa: E402
+from meltdem import paths
+from meltdem.testing.report import check_at_most, check_relative
+from meltdem.case import coupled as cc
+from meltdem.case import foam as fc
 
 D, RHO_P, CP_P, TM = 600e-6, 8020.0, 48.35, 1000.0
 M_P = RHO_P * np.pi * D**3 / 6
@@ -81,7 +81,7 @@ def main():
     if rep:
         os.makedirs(rep, exist_ok=True)
         png = os.path.join(rep, f"{test}.ledger.png")
-        subprocess.run(["/usr/bin/python3", os.path.join(os.environ["MELTDEM_SOURCE_DIR"], "scripts", "plot_ledger.py"),
+        subprocess.run(["/usr/bin/python3", os.path.join(paths.source_dir(), "scripts", "plot_ledger.py"),
                         os.path.join(case, "postProcessing", "particleLedger", "ledger.csv"), "-o", png,
                         "-c", "mass", "enthalpy", "mom_y"], check=False)
         shutil.copy(os.path.join(case, "postProcessing", "particleLedger", "ledger.csv"),

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""LAMMPS inputs a new user got wrong, which crashed, hung or ran wrongly (issue 17), on N ranks:
+"""LAMMPS inputs a new user got wrong, which crashed, hung or ran wrongly, on N ranks:
 
 - stop with a LAMMPS ERROR line that names the problem (no abort with a C++ backtrace, exit
   code not a signal): a Poisson ratio outside (-1, 0.5] in pair granular/powder, and in stock
@@ -10,13 +10,11 @@
   1.75 R): compute powder/overlap's count and largest overlap are 0.
 
 usage: bad_input.py NP"""
-import os
 import signal
 import sys
 
-sys.path.insert(0, os.path.join(os.environ["MELTDEM_SOURCE_DIR"], "tests", "support"))
-from lammps_run import run  # noqa: E402
-from meltdem_report import check_absolute, check_at_most  # noqa: E402
+from meltdem.testing.lammps_run import run
+from meltdem.testing.report import check_absolute, check_at_most
 
 NP = int(sys.argv[1]) if len(sys.argv) > 1 else 1
 TEST = "dem.bad_input" + (f".np{NP}" if NP > 1 else "")
@@ -30,7 +28,8 @@ region box block 0 3e-4 0 3e-4 0 1e-3
 create_box 1 box
 neighbor 1e-5 bin
 """
-PAIR = "pair_style granular/powder 5e-5\npair_coeff * * hertz/material 2e11 0.5 {nu} damping tsuji tangential mindlin NULL 1.0 0.5\n"
+PAIR = ("pair_style granular/powder 5e-5\n"
+        "pair_coeff * * hertz/material 2e11 0.5 {nu} damping tsuji tangential mindlin NULL 1.0 0.5\n")
 TWO = """create_atoms 1 single 1.5e-4 1.5e-4 5e-4
 create_atoms 1 single 1.79e-4 1.5e-4 5e-4
 set atom * diameter 3e-5

@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """fix powder/dt and compute powder/overlap refuse bad input with a LAMMPS error naming
 the problem."""
-from dt_common import check_errors, report, run, two_spheres
+from meltdem.testing.lammps_run import check_errors
+from meltdem.testing.dem import two_spheres
 
 TEST = "dem.dt.bad_input"
 BASE = two_spheres(-6e-5, 6e-5, 20e-6, 30e-6, 1.0, -1.0)

@@ -2,7 +2,9 @@
 """Head-on elastic collision of two steel spheres (20 and 30 um) under fix powder/dt:
 the contact lasts t_c of eq. 3.1 (<= 2 % at S >= 10; the issue's criterion). Start and
 end of the contact are interpolated linearly between steps from the overlap."""
-from dt_common import check_relative, mass, run, t_contact, thermo_runs, two_spheres
+from meltdem.testing.lammps_run import run, thermo_runs
+from meltdem.testing.report import check_relative
+from meltdem.testing.dem import mass, t_contact, two_spheres
 
 TEST = "dem.dt.contact_duration"
 R1, R2, U = 10e-6, 15e-6, 2.0

@@ -4,7 +4,9 @@ sub-cycle count ceil(interval/dt), and follows changes of speed, radius and dens
 import math
 import sys
 
-from dt_common import ESTAR, RHO, check_absolute, check_at_most, check_relative, mass, run, thermo_runs, two_spheres
+from meltdem.testing.lammps_run import run, thermo_runs
+from meltdem.testing.report import check_absolute, check_at_most, check_relative
+from meltdem.testing.dem import ESTAR, RHO, mass, two_spheres
 
 NP = int(sys.argv[1]) if len(sys.argv) > 1 else 1
 TEST = "dem.dt.contact_time" + (f".np{NP}" if NP > 1 else "")

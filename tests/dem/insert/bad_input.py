@@ -5,7 +5,9 @@ import os
 import sys
 import tempfile
 
-from insert_common import check_errors, read_dump, report, run
+from meltdem.testing.lammps_run import check_errors, run
+from meltdem.testing.report import report
+from insert_common import read_dump
 
 TEST = "dem.insert.bad_input"
 HEADER = """units si
@@ -66,7 +68,8 @@ cases = [
      fix(OK.replace("region ins", "region high"), extra="region high block 0.001 0.009 0.001 0.009 0.005 0.02\n"),
      "region high extends outside the simulation box"),
     ("unbounded region",
-     fix(OK.replace("region ins", "region outside"), extra="region outside block 0.001 0.009 0.001 0.009 0.001 0.009 side out\n"),
+     fix(OK.replace("region ins", "region outside"),
+         extra="region outside block 0.001 0.009 0.001 0.009 0.001 0.009 side out\n"),
      "region outside is unbounded"),
     ("pair cutoff below the diameter", fix(OK, HEADER.replace("pair_style granular 1.2e-3", "pair_style granular")),
      "pair cutoff 0 is smaller than the largest inserted diameter"),

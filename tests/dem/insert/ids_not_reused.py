@@ -8,7 +8,9 @@ through 300 K gas heated at 5e6 K/s). The restart keeps the last ID given.
 """
 import tempfile
 
-from insert_common import PHYSICS, SETUP, check_absolute, run
+from meltdem.testing.lammps_run import run
+from meltdem.testing.report import check_absolute
+from insert_common import PHYSICS, SETUP
 
 TEST = "dem.insert.ids_not_reused"
 INS = "fix ins all powder/insert 40 7 region ins diam uniform 0.8e-3 1.2e-3 dens 2500 rate 1e5 attempts 50"

@@ -1,12 +1,7 @@
 """Helpers of the fix powder/insert tests: scenes, running meltdem-lmp, reading dumps/thermo."""
-import os
-import sys
-
 import numpy as np
 
-sys.path.insert(0, os.path.join(os.environ["MELTDEM_SOURCE_DIR"], "tests", "support"))
-from meltdem_report import check_absolute, check_at_most, check_relative, report  # noqa: E402,F401
-from lammps_run import LMP, check_errors, run  # noqa: E402,F401
+from meltdem.io import dumps
 
 
 # 1 mm soft spheres (E = 5 MPa keeps the step at 1e-5 s) in a 10 x 10 x 45 mm box closed by
@@ -15,7 +10,7 @@ from lammps_run import LMP, check_errors, run  # noqa: E402,F401
 # and drains as the earlier particles fall out of the region. With 2 ranks the box is cut
 # in x, through the insertion region, so the overlap search spans ranks.
 GRAN = "hertz/material 5e6 0.5 0.3 damping tsuji tangential linear_nohistory 1.0 0.5"
-SETUP = f"""units si
+SETUP = """units si
 atom_style sphere
 atom_modify map array
 boundary f f f
@@ -67,19 +62,4 @@ def thermo(out, first="Step"):
 
 def read_dump(path):
     """{step: array of rows (id radius x y z)} from a dump custom file."""
-    frames = {}
-    with open(path) as f:
-        lines = f.read().splitlines()
-    i = 0
-    while i < len(lines):
-        if lines[i].startswith("ITEM: TIMESTEP"):
-            step = int(lines[i + 1])
-            n = int(lines[i + 3])
-            data = np.array([[float(v) for v in l.split()] for l in lines[i + 9:i + 9 + n]])
-            if n == 0:
-                data = np.zeros((0, 5))
-            frames[step] = data
-            i += 9 + n
-        else:
-            i += 1
-    return frames
+    return {fr["step"]: fr["data"] for fr in dumps.read_frames(path)}

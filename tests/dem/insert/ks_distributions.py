@@ -11,7 +11,9 @@ import numpy as np
 from scipy import integrate
 from scipy.stats import norm
 
-from insert_common import check_at_most, read_dump, run
+from meltdem.testing.lammps_run import run
+from meltdem.testing.report import check_at_most
+from insert_common import read_dump
 
 TEST = "dem.insert.ks_distributions"
 N = 3000
@@ -58,8 +60,16 @@ def ks(sample, cdf):
 
 
 lo, hi = 0.7e-3, 1.3e-3
-rr = lambda d: 1 - np.exp(-(d / 1.1e-3) ** 4)
-rr_pdf = lambda d: 4 / d * (d / 1.1e-3) ** 4 * np.exp(-(d / 1.1e-3) ** 4)
+
+
+def rr(d):
+    return 1 - np.exp(-(d / 1.1e-3) ** 4)
+
+
+def rr_pdf(d):
+    return 4 / d * (d / 1.1e-3) ** 4 * np.exp(-(d / 1.1e-3) ** 4)
+
+
 ln_mu, ln_s = np.log(1e-3), 0.25
 cases = [
     ("one", "one 1e-3", lambda d: (np.asarray(d) >= 1e-3).astype(float)),
@@ -85,7 +95,8 @@ for icase, (name, diam, cdf) in enumerate(cases):
     with tempfile.TemporaryDirectory() as d:
         with open(os.path.join(d, "psd.txt"), "w") as f:
             f.write("# diameter weight\n" + "".join(f"{a} {b}\n" for a, b in TABLE))
-        text = HEAD + (f"fix ins all powder/insert {N} {4711 + 10 * icase} region ins diam {diam.replace('TABLEFILE', 'psd.txt')}"
+        text = HEAD + (f"fix ins all powder/insert {N} {4711 + 10 * icase} region ins "
+                       f"diam {diam.replace('TABLEFILE', 'psd.txt')}"
                        " dens 8000\n"
                        "dump d all custom 1 dump.ins id radius x y z\ndump_modify d sort id format float %.17g\n"
                        "run 1\n")

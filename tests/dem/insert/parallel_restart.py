@@ -9,7 +9,9 @@ import tempfile
 
 import numpy as np
 
-from insert_common import INSERT, OUTPUT, PHYSICS, TIGHT, check_absolute, read_dump, report, run, thermo
+from meltdem.testing.lammps_run import run
+from meltdem.testing.report import check_absolute, report
+from insert_common import INSERT, OUTPUT, PHYSICS, TIGHT, read_dump, thermo
 
 TEST = "dem.insert.parallel_restart"
 N = 2000

@@ -6,7 +6,9 @@ import sys
 
 import numpy as np
 
-from insert_common import check_absolute, check_at_most, run, thermo
+from meltdem.testing.lammps_run import run
+from meltdem.testing.report import check_absolute, check_at_most
+from insert_common import thermo
 
 TEST = "dem.insert.rate_timestep"
 HEAD = """units si
@@ -37,7 +39,8 @@ _, out = run(HEAD + f"fix ins all powder/insert 100000 7 region ins diam uniform
              f"rate {RATE}\n" + RUNS)
 t = thermo(out)
 time, ins, pend, drawn = t[:, 1], t[:, 2], t[:, 3], t[:, 7]
-ok &= check_absolute(TEST, f"drawn at t = {time[-1]:.4g} s vs rate*t (rate {RATE:g}/s)", drawn[-1], RATE * time[-1], 1.0)
+ok &= check_absolute(TEST, f"drawn at t = {time[-1]:.4g} s vs rate*t (rate {RATE:g}/s)", drawn[-1], RATE * time[-1],
+                     1.0)
 ok &= check_at_most(TEST, "max (rate*t - drawn) over all outputs, particles (0 <= . < 1)",
                     np.max(RATE * time - drawn), 1.0 - 1e-9)
 ok &= check_at_most(TEST, "max (drawn - rate*t) over all outputs, particles", np.max(drawn - RATE * time), 1e-6)

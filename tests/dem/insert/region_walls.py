@@ -9,7 +9,9 @@ import tempfile
 import numpy as np
 from scipy.spatial import cKDTree
 
-from insert_common import GRAN, check_absolute, check_at_most, read_dump, run
+from meltdem.testing.lammps_run import run
+from meltdem.testing.report import check_absolute, check_at_most
+from insert_common import GRAN, read_dump
 
 TEST = "dem.insert.region_walls"
 R = 5e-3
@@ -33,7 +35,8 @@ WALLS = {
 ok = True
 for name, wall in WALLS.items():
     with tempfile.TemporaryDirectory() as d:
-        run(HEAD + wall + f"fix ins all powder/insert {N} 99 region ins diam uniform 0.8e-3 1.2e-3 dens 2500 gap 1e-5 attempts 200\n"
+        run(HEAD + wall + f"fix ins all powder/insert {N} 99 region ins diam uniform 0.8e-3 1.2e-3 dens 2500 "
+            "gap 1e-5 attempts 200\n"
             "dump d all custom 1 dump.ins id radius x y z\ndump_modify d sort id format float %.17g\nrun 1\n",
             cwd=d)
         fr = read_dump(os.path.join(d, "dump.ins"))[1]

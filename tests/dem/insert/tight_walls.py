@@ -9,7 +9,9 @@ import tempfile
 import numpy as np
 from scipy.spatial import cKDTree
 
-from insert_common import TIGHT, check_absolute, check_at_most, read_dump, report, run, thermo
+from meltdem.testing.lammps_run import run
+from meltdem.testing.report import check_absolute, check_at_most, report
+from insert_common import TIGHT, read_dump, thermo
 
 NP = int(sys.argv[1]) if len(sys.argv) > 1 else 1
 TEST = "dem.insert.tight_walls" + (f".np{NP}" if NP > 1 else "")

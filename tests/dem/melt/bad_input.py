@@ -2,7 +2,9 @@
 """fix powder/melt refuses bad input with a LAMMPS error that names the problem."""
 import sys
 
-from melt_common import HEADER, check_errors, report, run
+from meltdem.testing.lammps_run import check_errors, run
+from meltdem.testing.report import report
+from melt_common import HEADER
 
 TEST = "dem.melt.bad_input"
 OK_ARGS = "cp 48.35 Tmelt 1000 latent 2.7e5"

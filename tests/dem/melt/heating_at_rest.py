@@ -5,7 +5,9 @@ Two time steps (tau/200 and tau/5): the exact step integration makes both exact.
 import math
 import sys
 
-from melt_common import HEADER, check_at_most, check_relative, run, thermo, value
+from meltdem.testing.lammps_run import printed_value as value, run, thermo_rows as thermo
+from meltdem.testing.report import check_at_most, check_relative
+from melt_common import HEADER
 
 TEST = "dem.melt.heating_at_rest"
 d, rho, cp, k, Tf, T0 = 600e-6, 8020.0, 48.35, 100.0, 1500.0, 300.0

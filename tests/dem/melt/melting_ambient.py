@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""The thesis 2.3 particle (d = 600 um, rho = 8020, cp = 48.35, Tm = 1000 K, T0 = 0 K,
+"""The Codina2019 §2.3 particle (d = 600 um, rho = 8020, cp = 48.35, Tm = 1000 K, T0 = 0 K,
 v = (0,-2,0) m/s) melts in the table 2.2 gas (1500 K, k = 100, U = (0,-2,0): no slip, Nu = 2)
 given by 'ambient'. Everything it absorbs and hands over must be booked:
 heat = m cp (Tm - T0) + m L, mass = m, enthalpy = m (cp Tm + L) (eq. 2.9), momentum = m v
@@ -10,7 +10,9 @@ import math
 import sys
 import tempfile
 
-from melt_common import HEADER, check_absolute, check_at_most, check_relative, run, thermo, value
+from meltdem.testing.lammps_run import printed_value as value, run, thermo_rows as thermo
+from meltdem.testing.report import check_absolute, check_at_most, check_relative
+from melt_common import HEADER
 
 
 def check_rel_error(what, measured, reference, tol):
@@ -18,10 +20,11 @@ def check_rel_error(what, measured, reference, tol):
     return check_at_most(TEST, what + f" (measured {measured:.17g}, reference {reference:.17g})",
                          abs(measured - reference) / abs(reference), tol)
 
+
 np = int(sys.argv[1]) if len(sys.argv) > 1 else 1
 TEST = "dem.melt.melting_ambient" + ("" if np == 1 else f".np{np}")
 d, rho, cp, Tm, T0, Tf, k = 600e-6, 8020.0, 48.35, 1000.0, 0.0, 1500.0, 100.0
-L = 0.248611 / 9.069e-7  # thesis: E_latent = 0.248611 J for m = 9.069e-7 kg
+L = 0.248611 / 9.069e-7  # Codina2019: E_latent = 0.248611 J for m = 9.069e-7 kg
 dt = 1e-6
 n = 1 if np == 1 else 8
 
@@ -74,12 +77,12 @@ last = rows[-1]
 ok = True
 ok &= check_absolute(TEST, "particles left after melting", last["Atoms"], 0, 0)
 ok &= check_rel_error("heat absorbed vs n (m cp (Tm - T0) + m L) relative error", last["f_m[6]"],
-                     n * (m * cp * (Tm - T0) + m * L), 1e-10)
+                      n * (m * cp * (Tm - T0) + m * L), 1e-10)
 ok &= check_rel_error("mass handed over vs n m0 relative error", last["f_m[1]"], n * m, 1e-15)
 ok &= check_rel_error("enthalpy handed over vs n m (cp Tm + L) (eq. 2.9) relative error", last["f_m[2]"],
-                     n * m * (cp * Tm + L), 1e-12)
+                      n * m * (cp * Tm + L), 1e-12)
 ok &= check_rel_error("y momentum handed over vs n m vy (eq. 2.11) relative error", last["f_m[4]"],
-                     n * m * -2.0, 1e-12)
+                      n * m * -2.0, 1e-12)
 if n == 1:
     ok &= check_absolute(TEST, "per-atom temperature while melting [K]", value(out, "TEMP"), Tm, 0.0)
     ok &= check_relative(TEST, "per-atom melted fraction vs 1 - m/m0 (step 1500)", value(out, "FRAC"),

@@ -9,7 +9,9 @@ import sys
 
 from scipy.optimize import brentq
 
-from melt_common import HEADER, check_relative, run, thermo
+from meltdem.testing.lammps_run import run, thermo_rows as thermo
+from meltdem.testing.report import check_relative
+from melt_common import HEADER
 
 TEST = "dem.melt.stokes_settling"
 d, rho_p, rho_f, g = 20e-6, 8000.0, 1000.0, 9.81

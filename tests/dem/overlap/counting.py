@@ -4,11 +4,10 @@ newton_pair off or on, periodic images) and sees flat granular walls.
 Set-up: four 20 um spheres on a periodic x line, each overlapping its neighbours by 10 %
 of the radius (4 contacts, one through the periodic boundary), and one sphere 10 %
 into a zplane wall/gran. Usage: counting.py NP NEWTON"""
-import os
 import sys
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "dt"))
-from dt_common import check_relative, report, run, thermo_runs  # noqa: E402
+from meltdem.testing.lammps_run import run, thermo_runs
+from meltdem.testing.report import check_relative, report
 
 np_, newton = int(sys.argv[1]), sys.argv[2]
 TEST = f"dem.overlap.counting.np{np_}.newton_{newton}"
@@ -33,7 +32,7 @@ compute ov all powder/overlap threshold 0.09
 thermo_style custom step c_ov[1] c_ov[2] c_ov[3] c_ov[4]
 thermo_modify format float %.17g
 run 0
-"""
+"""  # noqa: E501  (a long line of the LAMMPS input written verbatim)
 _, out = run(text, np=np_)
 row = thermo_runs(out)[0][0]
 v = [row[f"c_ov[{k}]"] for k in range(1, 5)]

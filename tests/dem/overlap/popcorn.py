@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Pop-corn (thesis 3.2.1) measured by compute powder/overlap.
+"""Pop-corn (Codina2019 §3.2.1) measured by compute powder/overlap.
 
 Two steel spheres (R = 10 um) collide head-on at 30 m/s; the elastic Hertz overlap peaks
 at delta_max = (15 m* U^2 / (16 E* sqrt R*))^(2/5) = 0.032 R. With fix powder/dt steps
@@ -7,12 +7,9 @@ S >= 10 the largest overlap stays within 5 % of delta_max and the compute report
 contact above the default threshold 0.05. With S = 1 a step is the whole contact time:
 the gap is chosen so the first step in contact lands 80 % of a step deep (2.3 delta_max),
 the compute flags it and warns, and the pair leaves faster than it came (pop-corn)."""
-import os
-import sys
-
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "dt"))
-from dt_common import (check_at_most, check_relative, delta_max, mass, report, run,  # noqa: E402
-                       t_contact, thermo_runs, two_spheres)
+from meltdem.testing.lammps_run import run, thermo_runs
+from meltdem.testing.report import check_at_most, check_relative, report
+from meltdem.testing.dem import delta_max, mass, t_contact, two_spheres
 
 TEST = "dem.overlap.popcorn"
 R, U = 10e-6, 30.0

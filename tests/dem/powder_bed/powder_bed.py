@@ -1,50 +1,50 @@
 #!/usr/bin/python3
-"""CI-sized powder bed of thesis table 4.3/4.4 (examples/powder-bed/in.powder-bed).
+"""CI-sized powder bed of Codina2019 table 4.3/4.4 (examples/powder-bed/in.powder-bed).
 
 Same input, material (E = 200 GPa, no softening), damping (alpha 1.5 particle, 1 wall),
 friction, gravity x10, injection at -2 m/s and powder amount per floor area as the
 example, on a 0.30 x 0.30 mm floor, periodic sideways (so the small box has no side-wall
 layering), instead of 0.90 x 0.90 mm with walls: 153 instead of 1375 particles.
 
-Checks (definitions in examples/powder-bed/bed_stats.py and README.md):
+Checks (definitions in python/meltdem/analysis/beds.py and README.md):
   * feed: inserted + pending = requested at every thermo step once all are due; pending 0 and inserted =
     requested at the end; all particles still in the box.
   * no pop-corn, sampled every 100 steps (compute powder/overlap): no contact above
     overlap/R = 0.01, no pop-corn warning. 0.01 is 1.6 times the elastic Hertz peak of
     the hardest impact this pour can have (two equal spheres approaching at 2 x 2.01 m/s,
     delta_max/R = (2.776 rho U^2/E*)^0.4 = 0.0063, independent of size); pop-corn
-    (thesis 3.2.1) is an overlap beyond what the impact speed allows.
+    (Codina2019 §3.2.1) is an overlap beyond what the impact speed allows.
   * no particle faster than 2 x the largest free-fall speed sqrt(v0^2 + 2 g Ly) (the most
     a collision can hand a light particle): energy is not created.
   * settled: the run stopped on its own (all in, rms speed < 1 mm/s) before tend; the
     largest overlap/R at the end is below 1e-4 (resting contacts under 10 g: ~1e-6).
   * thickness H (height where the solid fraction profile falls to half its bulk value)
-    vs the thesis's ~60 um, tolerance 15 um (half a mean diameter: the thickness of a
+    vs Codina2019's ~60 um, tolerance 15 um (half a mean diameter: the thickness of a
     layer two particles thick depends on where its rough top is put; the mean column
     top is printed too);
-  * packing V/(A H) (solid layer over thickness: the thesis's compaction factor) inside
-    the range of random poured beds 0.55-0.64, and vs the thesis's 0.5 (+-0.05, XFAIL:
+  * packing V/(A H) (solid layer over thickness: Codina2019's compaction factor) inside
+    the range of random poured beds 0.55-0.64, and vs Codina2019's 0.5 (+-0.05, XFAIL:
     a poured low-friction bed is denser).
-The thesis's amount (60 um at 0.5 = a 30 um solid layer) is used, so H = 30 um / packing.
+Codina2019's amount (60 um at 0.5 = a 30 um solid layer) is used, so H = 30 um / packing.
 """
 import math
 import os
 import subprocess
-import sys
 import tempfile
 
+from meltdem import paths
+from meltdem.analysis.beds import bed_stats
+from meltdem.testing.lammps_run import lmp, thermo_runs
+from meltdem.testing.report import check_absolute, check_at_most, report
+
 HERE = os.path.dirname(os.path.abspath(__file__))
-SRC = os.environ["MELTDEM_SOURCE_DIR"]
-sys.path.insert(0, os.path.join(HERE, "..", "dt"))
-sys.path.insert(0, os.path.join(SRC, "examples", "powder-bed"))
-from bed_stats import bed_stats  # noqa: E402
-from dt_common import LMP, check_absolute, check_at_most, report, thermo_runs  # noqa: E402
+SRC = paths.source_dir()
 
 TEST = "dem.powder_bed.ci"
 VSETTLE, POPCORN, TEND, EVERY = 0.001, 0.01, 15e-3, 100
 G, V0, LY = 10 * 9.81, 2.0, 2.1e-4
 with tempfile.TemporaryDirectory() as d:
-    cmd = [LMP, "-in", os.path.join(SRC, "examples", "powder-bed", "in.powder-bed"), "-log", "none",
+    cmd = [lmp(), "-in", os.path.join(SRC, "examples", "powder-bed", "in.powder-bed"), "-log", "none",
            "-echo", "none", "-var", "Lx", "3e-4", "-var", "Lz", "3e-4", "-var", "sides", "periodic",
            "-var", "tend", str(TEND), "-var", "vsettle", str(VSETTLE), "-var", "popcorn", str(POPCORN),
            "-var", "every", str(EVERY), "-var", "dump", "bed.dump"]

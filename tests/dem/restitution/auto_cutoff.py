@@ -6,10 +6,11 @@ onto the floor under gravity. The neighbor cutoff must be dmax + skin, and the r
 be identical (every position, every digit) to the same run with the explicit cutoff
 'pair_style granular/powder 4.5e-5'; contacts must have happened (so the comparison
 covers pair forces). Serial and mpirun -np 2."""
-import os, re, sys
-sys.path.insert(0, os.path.join(os.environ['MELTDEM_SOURCE_DIR'], 'tests', 'support'))
-from meltdem_report import check_absolute, check_relative, report
-from lammps_run import run
+import os
+import re
+import sys
+from meltdem.testing.report import check_relative, report
+from meltdem.testing.lammps_run import run
 
 T = "dem.restitution.auto_cutoff"
 GRAN = "hertz/material 5e6 0.5 0.3 damping tsuji tangential linear_nohistory 1.0 0.5"
@@ -57,9 +58,9 @@ for np_ in (1, 2):
         outs[cut] = (out, positions(d))
     out, pos = outs[""]
     m = re.search(r"master list distance cutoff = (\S+)", out)
-    ok &= check_relative(T, f"np {np_}: neighbor cutoff without pair cutoff (dmax + skin)", float(m.group(1)) if m else 0.0,
-                         45e-6 + SKIN, 1e-6)
-    contacts = [float(l.split()[2]) for l in out.splitlines() if re.match(r"^\s*4000\s+300\s", l)]
+    ok &= check_relative(T, f"np {np_}: neighbor cutoff without pair cutoff (dmax + skin)",
+                         float(m.group(1)) if m else 0.0, 45e-6 + SKIN, 1e-6)
+    contacts = [float(line.split()[2]) for line in out.splitlines() if re.match(r"^\s*4000\s+300\s", line)]
     n = contacts[0] if contacts else 0.0
     ok &= report(T, f"np {np_}: contacts at the end (must be > 0)", n, "> 0", "bound", n > 0)
     same = pos == outs["4.5e-5"][1]

@@ -1,8 +1,7 @@
 #!/usr/bin/python3
 """granular/powder must refuse bad input with a LAMMPS error naming the problem."""
-import os, sys
-sys.path.insert(0, os.environ['MELTDEM_SOURCE_DIR'] + '/tests/support')
-from lammps_run import check_errors
+import sys
+from meltdem.testing.lammps_run import check_errors
 
 T = "dem.restitution.bad_input"
 HEAD = """units {units}
@@ -19,15 +18,19 @@ cases = [
      "restitution e must lie in (0,1]"),
     ("e = 0", "si", "pair_coeff * * hertz/material 200e9 0 0.3 damping tsuji tangential linear_nohistory 1.0 0.0\n",
      "restitution e must lie in (0,1]"),
-    ("alpha < 0", "si", "pair_coeff * * hertz/material 200e9 0.5 0.3 damping tsuji/alpha -1 tangential linear_nohistory 1.0 0.0\n",
+    ("alpha < 0", "si",
+     "pair_coeff * * hertz/material 200e9 0.5 0.3 damping tsuji/alpha -1 tangential linear_nohistory 1.0 0.0\n",
      "tsuji/alpha must be >= 0"),
     ("alpha missing", "si", "pair_coeff * * hertz/material 200e9 0.5 0.3 damping tsuji/alpha\n",
      "damping tsuji/alpha needs a value"),
-    ("tsuji with dmt", "si", "pair_coeff * * dmt 200e9 0.5 0.3 1e-3 damping tsuji tangential linear_nohistory 1.0 0.0\n",
+    ("tsuji with dmt", "si",
+     "pair_coeff * * dmt 200e9 0.5 0.3 1e-3 damping tsuji tangential linear_nohistory 1.0 0.0\n",
      "damping tsuji needs normal model hertz/material or hertz"),
-    ("unset mixed pair", "si", GOOD + "pair_coeff 2 2 hertz/material 100e9 0.5 0.3 damping tsuji tangential linear_nohistory 1.0 0.0\nrun 0\n",
+    ("unset mixed pair", "si",
+     GOOD + "pair_coeff 2 2 hertz/material 100e9 0.5 0.3 damping tsuji tangential linear_nohistory 1.0 0.0\nrun 0\n",
      "pair_coeff 1 2 not set"),
-    ("non-SI units", "metal", "pair_coeff * * hertz/material 200e9 0.5 0.3 damping tsuji tangential linear_nohistory 1.0 0.0\nrun 0\n",
+    ("non-SI units", "metal",
+     "pair_coeff * * hertz/material 200e9 0.5 0.3 damping tsuji tangential linear_nohistory 1.0 0.0\nrun 0\n",
      "requires units si"),
 ]
 ok = check_errors(T, [(what, HEAD.format(units=units) + tail, expect) for what, units, tail, expect in cases])

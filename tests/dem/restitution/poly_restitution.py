@@ -6,13 +6,14 @@ the prescribed e within 1 %: one type (steel), and two types (steel, 7800 kg/m3 
 110 GPa/4430 kg/m3 alloy) whose 1-1, 2-2 and explicitly set 1-2 coefficients all differ,
 so a wrongly mixed or ignored 1-2 pair would show. tsuji/alpha for 1-2 vs e(alpha) from
 scipy."""
-import os, sys
+import os
+import sys
+
+from meltdem.analysis.hertz import restitution_for_alpha
+from meltdem.testing.lammps_run import printed_value, run_file
+from meltdem.testing.report import check_relative, report
+
 HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, os.environ['MELTDEM_SOURCE_DIR'] + '/tests/support')
-sys.path.insert(0, HERE)
-from meltdem_report import check_relative, report
-from lammps_run import printed_value, run_file
-from hertz_ref import restitution_for_alpha
 
 T = "dem.restitution.polydisperse"
 

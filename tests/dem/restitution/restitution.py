@@ -3,10 +3,10 @@
 speed 2 and 20 m/s, dt = 1e-10 s (t_c / dt ~ 800 at 2 m/s): pair_style granular/powder
 with 'damping tsuji' must return the prescribed e within 1 %; tsuji/alpha 1.5 must give
 coupling::restitution_for_alpha(1.5) = 0.05833. Stock granular's biased e is printed."""
-import os, sys
-sys.path.insert(0, os.environ['MELTDEM_SOURCE_DIR'] + '/tests/support')
-from meltdem_report import check_relative, report
-from lammps_run import printed_value, run_file
+import os
+import sys
+from meltdem.testing.report import check_relative, report
+from meltdem.testing.lammps_run import printed_value, run_file
 
 T = "dem.restitution.monodisperse"
 IN = os.path.join(os.path.dirname(os.path.abspath(__file__)), 'in.head_on')
@@ -15,6 +15,7 @@ IN = os.path.join(os.path.dirname(os.path.abspath(__file__)), 'in.head_on')
 def run(style, e, v, damp="tsuji"):
     _, out = run_file(IN, dict(v=v, style=style, e=e, damp=damp, dt=1e-10, n=3000))
     return printed_value(out, "RESULT")
+
 
 ok = True
 for v in (1, 10):

@@ -1,9 +1,8 @@
 #!/usr/bin/python3
 """fix wall/gran/powder and wall/gran/region/powder must refuse bad input with a LAMMPS
 error naming the problem (never a crash)."""
-import os, sys
-sys.path.insert(0, os.environ['MELTDEM_SOURCE_DIR'] + '/tests/support')
-from lammps_run import check_errors
+import sys
+from meltdem.testing.lammps_run import check_errors
 
 T = "dem.restitution.wall_bad_input"
 HEAD = """units {units}
@@ -52,9 +51,11 @@ cases = [
      "region walls need fix wall/gran/region/powder"),
     ("plane wall in wall/gran/region/powder", "si", f"{WR} {HM} damping tsuji {TAN} zplane 0 NULL",
      "the wall style must be 'region ID'"),
-    ("unknown region", "si", f"{WR} {HM} damping tsuji {TAN} region nowhere", "Region ID for fix wall/gran/region does not exist"),
+    ("unknown region", "si", f"{WR} {HM} damping tsuji {TAN} region nowhere",
+     "Region ID for fix wall/gran/region does not exist"),
     ("unknown keyword", "si", f"{W} {HM} damping tsuji {TAN} bogus 1 zplane 0 NULL", "Illegal fix wall/gran command"),
-    ("wall in periodic dimension", "si", f"{W} {HM} damping tsuji {TAN} xplane 0 NULL", "Cannot use wall in periodic dimension"),
+    ("wall in periodic dimension", "si", f"{W} {HM} damping tsuji {TAN} xplane 0 NULL",
+     "Cannot use wall in periodic dimension"),
 ]
 inputs = []
 for case in cases:

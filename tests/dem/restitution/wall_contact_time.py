@@ -1,18 +1,20 @@
 #!/usr/bin/python3
 """Contact duration of a 30 um steel sphere (E = 200 GPa, nu = 0.3, rho = 7800) hitting
-fix wall/gran/powder head-on, elastic (damping tsuji/alpha 0), vs thesis eq. 3.1 with the
+fix wall/gran/powder head-on, elastic (damping tsuji/alpha 0), vs Codina2019 eq. 3.1 with the
 particle-wall values m* = m, R* = R and 1/E* = (1-nu^2)/E + (1-nu_w^2)/E_w: same-material
-wall, a 70 GPa wall (wall_material) and a rigid wall, at 2 and 20 m/s, plane and region (fix wall/gran/region/powder) walls; dt = 1e-10 s
-(t_c/dt ~ 600-1100) and, as the issue asks, at S = t_c/dt = 10 (<= 2 %). The contact
-starts and ends where the gap z - r crosses 0 (linear interpolation between steps: the
+wall, a 70 GPa wall (wall_material) and a rigid wall, at 2 and 20 m/s, plane and region (fix
+wall/gran/region/powder) walls; dt = 1e-10 s (t_c/dt ~ 600-1100) and at S = t_c/dt = 10 (<= 2 %).
+The contact starts and ends where the gap z - r crosses 0 (linear interpolation between steps: the
 sphere moves force-free on both sides). Stock wall/gran (E* too stiff by 1+nu) is printed."""
-import math, os, sys
+import math
+import os
+import sys
+
+from meltdem.analysis.hertz import hertz_contact_time
+from meltdem.testing.lammps_run import run_file
+from meltdem.testing.report import check_relative, report
+
 HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, os.environ['MELTDEM_SOURCE_DIR'] + '/tests/support')
-sys.path.insert(0, HERE)
-from meltdem_report import check_relative, report
-from lammps_run import run_file
-from hertz_ref import hertz_contact_time
 
 T = "dem.restitution.wall_contact_time"
 E, NU, RHO, D = 200e9, 0.3, 7800.0, 30e-6
@@ -21,9 +23,11 @@ M = RHO * math.pi / 6 * D ** 3
 
 
 def measured_contact_time(style, v, dt, extra="", geom="zplane 0.0 NULL"):
-    wallfix = f"{style} granular hertz/material {E} 0.5 {NU} damping tsuji/alpha 0 {extra} tangential linear_nohistory 1.0 0.0"
+    wallfix = (f"{style} granular hertz/material {E} 0.5 {NU} damping tsuji/alpha 0 {extra} "
+               "tangential linear_nohistory 1.0 0.0")
     if style == 'wall/gran':    # stock: no tsuji/alpha; viscoelastic with 0 damping is elastic
-        wallfix = f"wall/gran granular hertz/material {E} 0 {NU} damping viscoelastic tangential linear_nohistory 1.0 0.0"
+        wallfix = (f"wall/gran granular hertz/material {E} 0 {NU} damping viscoelastic "
+                   "tangential linear_nohistory 1.0 0.0")
     z0 = R + 3 * v * dt
     n = int(2.5e-7 / dt) + 10 if v < 10 else int(1.5e-7 / dt) + 10
     _, out = run_file(os.path.join(HERE, 'in.wall_head_on'),

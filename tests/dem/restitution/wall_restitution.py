@@ -1,22 +1,25 @@
 #!/usr/bin/python3
 """Head-on impact of a 30 um steel sphere (E = 200 GPa, nu = 0.3) on fix wall/gran/powder
-(plane z = 0; and fix wall/gran/region/powder, the face of a block region) at 2 and 20 m/s, no gravity, dt = 1e-10 s (t_c/dt ~ 700-1100): the measured
-e = |v_n after| / |v_n before| must be the prescribed e within 1 % for 'damping tsuji',
-and e(alpha) of the dimensionless Hertz-Tsuji contact (integrated here with scipy) for
-'damping tsuji/alpha' (alpha = 1: the thesis's wall value). Stock wall/gran is printed."""
-import os, sys
+(plane z = 0; and fix wall/gran/region/powder, the face of a block region) at 2 and 20 m/s, no
+gravity, dt = 1e-10 s (t_c/dt ~ 700-1100): the measured e = |v_n after| / |v_n before| must be
+the prescribed e within 1 % for 'damping tsuji', and e(alpha) of the dimensionless Hertz-Tsuji
+contact (integrated here with scipy) for 'damping tsuji/alpha' (alpha = 1: the Codina2019 wall
+value). Stock wall/gran is printed."""
+import os
+import sys
+
+from meltdem.analysis.hertz import restitution_for_alpha
+from meltdem.testing.lammps_run import printed_value, run_file
+from meltdem.testing.report import check_relative, report
+
 HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, os.environ['MELTDEM_SOURCE_DIR'] + '/tests/support')
-sys.path.insert(0, HERE)
-from meltdem_report import check_relative, report
-from lammps_run import printed_value, run_file
-from hertz_ref import restitution_for_alpha
 
 T = "dem.restitution.wall"
 
 
 def run(style, e, v, damp="tsuji", extra="", geom="zplane 0.0 NULL", init2=0):
-    wallfix = f"{style} granular hertz/material 200e9 {e} 0.3 damping {damp} {extra} tangential linear_nohistory 1.0 0.0"
+    wallfix = (f"{style} granular hertz/material 200e9 {e} 0.3 damping {damp} {extra} "
+               "tangential linear_nohistory 1.0 0.0")
     _, out = run_file(os.path.join(HERE, 'in.wall_head_on'),
                       dict(v=v, z0='15.01e-6', dt='1e-10', n=3000, every=3000, wallfix=wallfix, wallgeom=geom,
                            init2=init2))

@@ -1,10 +1,10 @@
 #!/usr/bin/python3
-"""Extremes of the DEM contact (issue 6): Young's modulus 1e6 ... 2e11 Pa and impact speeds
+"""Extremes of the DEM contact: Young's modulus 1e6 ... 2e11 Pa and impact speeds
 0.1 ... 100 m/s. Two 30 um steel spheres (rho 7800) meet head-on; fix powder/dt sets the step
 (S = 20 steps per contact) and guards Hertz's small-overlap assumption (max_overlap 0.3).
 
 For every (E, v): where the predicted undamped head-on overlap (10 pi sqrt(2)/16 rho U^2/E*)^0.4
-stays below 0.3 R the collision must happen (soft particles still collide: thesis ch. 5
+stays below 0.3 R the collision must happen (soft particles still collide: Codina2019 ch. 5
 "non-rigid collisions"): restitution within 2 % of the prescribed 0.5, the largest measured
 overlap within 1 % of the damped Hertz value (the dimensionless contact ODE
 x'' = -x^1.5 - alpha x^0.25 x' integrated here with scipy: with Tsuji's delta^(1/4) damping the
@@ -13,12 +13,10 @@ nothing NaN, no particle lost. Where it does not, the run must stop at once with
 knobs (Young's modulus, impact speed, max_overlap) -- never compute nonsense silently.
 """
 import math
-import os
 import sys
 
-sys.path.insert(0, os.environ['MELTDEM_SOURCE_DIR'] + '/tests/support')
-from meltdem_report import check_absolute, check_at_most, check_relative  # noqa: E402
-from lammps_run import run  # noqa: E402
+from meltdem.testing.report import check_absolute, check_relative
+from meltdem.testing.lammps_run import run
 
 T = "extremes.dem_collisions"
 R, RHO, NU, E_REST = 15e-6, 7800.0, 0.3, 0.5
@@ -68,8 +66,7 @@ def damped_factor(alpha):
 
 def main():
     ok = True
-    sys.path.insert(0, os.environ['MELTDEM_SOURCE_DIR'] + '/tests/dem/restitution')
-    from hertz_ref import restitution_for_alpha  # noqa: E402
+    from meltdem.analysis.hertz import restitution_for_alpha
     from scipy.optimize import brentq
     alpha = brentq(lambda a: restitution_for_alpha(a) - E_REST, 0.0, 2.0, xtol=1e-12)
     factor = damped_factor(alpha)

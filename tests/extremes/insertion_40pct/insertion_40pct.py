@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Insertion into a region already at 40 % solids (issue 6 extremes; thesis 3.2.2 "overlaps in
+"""Insertion into a region already at 40 % solids (Codina2019 §3.2.2 "overlaps in
 injection", ch. 5 "deferred insertion"). DEM only, meltdem-lmp.
 
 The region (a cube of 9 lattice spacings) holds 729 steel spheres of d = 30 um on a simple
@@ -23,15 +23,13 @@ and say so (naming the knobs) when it cannot make progress -- never force an ove
 usage: insertion_40pct.py [--np N]   (N ranks: every rank takes the same decisions)
 """
 import math
-import os
 import re
 import sys
 
 import numpy as np
 
-sys.path.insert(0, os.environ["MELTDEM_SOURCE_DIR"] + "/tests/support")
-from meltdem_report import check_absolute, check_at_most, check_relative  # noqa: E402
-from lammps_run import run, thermo_rows  # noqa: E402
+from meltdem.testing.report import check_absolute, check_at_most, check_relative
+from meltdem.testing.lammps_run import run, thermo_rows
 
 NP = int(sys.argv[sys.argv.index("--np") + 1]) if "--np" in sys.argv else 1
 T = "extremes.insertion_40pct" + (f".np{NP}" if NP > 1 else "")
@@ -112,8 +110,8 @@ def main():
     m = stall_message(out)
     ok &= check_absolute(T, "full: stall warnings (once, after 20 tries)",
                          len(re.findall("no particle placed in", out)), 1, 0)
-    ok &= check_absolute(T, "full: the warning names region, attempts, gap, rate", int(bool(m) and knobs_named(m.group(0))),
-                         1, 0)
+    ok &= check_absolute(T, "full: the warning names region, attempts, gap, rate",
+                         int(bool(m) and knobs_named(m.group(0))), 1, 0)
     if m:
         print(m.group(0))
     ok &= check_absolute(T, "full: largest overlap / R (no contact at all)", max(x["c_ov[1]"] for x in r), 0, 0)

@@ -17,11 +17,11 @@ import tempfile
 
 import numpy as np
 
-src = os.environ["MELTDEM_SOURCE_DIR"]
-sys.path.insert(0, os.path.join(src, "tests", "support"))
-sys.path.insert(0, os.path.join(src, "tests", "support"))
-from meltdem_report import report  # noqa: E402
-import foamcase as fc  # noqa: E402
+from meltdem import paths
+from meltdem.case import foam as fc
+from meltdem.testing.report import report
+
+src = paths.source_dir()
 
 TEST = "foam.bad_input"
 METAL = "metal { Tsolidus 1700; Tliquidus 1710; L 2.7e5; cp 965; k 35.95; }\n"

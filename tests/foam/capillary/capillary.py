@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Capillary relaxation: a square 2D metal drop (40 um side, SPH table-1 metal in its gas, no
+"""Capillary relaxation: a square 2D metal drop (40 um side, Fuchs2022 table-1 metal in its gas, no
 gravity) relaxes to a circle; the pressure jump inside - outside must be the 2D Laplace value
 sigma(T)/R (<= 5 %), R from the metal area. T is uniform at 2000 K so that sigma(T) = 1.5 N/m
 differs from transportProperties' sigma (1.8): a solver that used the latter would miss by 20 %.
@@ -12,11 +12,11 @@ import tempfile
 
 import numpy as np
 
-src = os.environ["MELTDEM_SOURCE_DIR"]
-sys.path.insert(0, os.path.join(src, "tests", "support"))
-sys.path.insert(0, os.path.join(src, "tests", "support"))
-from meltdem_report import check_relative, check_at_most  # noqa: E402
-import foamcase as fc  # noqa: E402
+from meltdem import paths
+from meltdem.case import foam as fc
+from meltdem.testing.report import check_relative, check_at_most
+
+src = paths.source_dir()
 
 TEST = "foam.capillary"
 M, G = fc.METAL, fc.GAS

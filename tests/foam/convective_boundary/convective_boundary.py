@@ -1,15 +1,14 @@
 """meltdemFoam, conduction only: a metal slab held at T1 on the left and cooled by the
 convectiveTemperature boundary (h, Tinf) on the right reaches the steady profile
-T(x) = T1 - q x / k with q = (T1 - Tinf) / (Lx/k + 1/h) (issue 4: convective boundaries)."""
+T(x) = T1 - q x / k with q = (T1 - Tinf) / (Lx/k + 1/h)."""
 import os
 import sys
 import tempfile
 
 import numpy as np
 
-sys.path.insert(0, os.path.join(os.environ["MELTDEM_SOURCE_DIR"], "tests", "support"))
-import foamcase as fc  # noqa: E402
-from meltdem_report import check_relative  # noqa: E402
+from meltdem.case import foam as fc
+from meltdem.testing.report import check_relative
 
 TEST = "foam.convective_boundary"
 LX, NX = 1e-3, 50

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """foam.laser_evaporation: meltdemFoam (flow off, energy, laser, evaporation) with a stationary
 Gaussian spot (the foam.rosenthal half model at v = 0: eta P/2 = 12.5 W, r = 10 um, 5 um cells,
-0.2 ms, dt 5 us). Evaporation (SPH eq. 18) must limit the surface temperature without undershoot:
+0.2 ms, dt 5 us). Evaporation (Fuchs2022 eq. 18) must limit the surface temperature without undershoot:
 T >= T0 everywhere, and the loss the solver booked equals eq. 18 recomputed here from the written
 T (top metal row, 2 alpha |grad alpha| = 1/dz there).
 
@@ -17,12 +17,14 @@ import tempfile
 
 import numpy as np
 
-SRC = os.environ.get("MELTDEM_SOURCE_DIR", os.path.join(os.path.dirname(__file__), "..", "..", ".."))
-for p in ("tests/support", "tests/foam/rosenthal"):
-    sys.path.insert(0, os.path.join(SRC, p))
-import foamcase as fc  # noqa: E402
-import rosenthal as R  # noqa: E402
-from meltdem_report import check_relative, check_at_most, report  # noqa: E402
+from meltdem import paths
+from meltdem.case import foam as fc
+from meltdem.loader import load_module
+from meltdem.testing.report import check_relative, check_at_most, report
+
+SRC = paths.source_dir()
+
+R = load_module(os.path.join(SRC, "tests", "foam", "rosenthal", "rosenthal.py"))
 
 TEST = "foam.laser_evaporation"
 XFAIL = "meltdemFoam subtracts the stiff evaporation loss explicitly; linearisation proposed"

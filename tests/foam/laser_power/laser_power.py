@@ -7,7 +7,7 @@ on written alpha fields of a 3D box (no solver).
 - the beam convention (1/e^2 radius, I0 = 2P/(pi r^2)): un-normalised hit fraction on a flat
   surface under the whole beam = 1;
 - zero when off and when no metal is under the beam; moving linear and polyline paths;
-- p_v(T_v) = 0.54 p_a (SPH eq. 10), p_v and the eq. 18 flux at 2500 K by hand, heat-loss
+- p_v(T_v) = 0.54 p_a (Fuchs2022 eq. 10), p_v and the eq. 18 flux at 2500 K by hand, heat-loss
   integral over a flat surface = flux * area;
 - bad input stops with a FatalIOError naming the entry.
 """
@@ -19,13 +19,14 @@ import tempfile
 
 import numpy as np
 
-SRC = os.environ.get("MELTDEM_SOURCE_DIR", os.path.join(os.path.dirname(__file__), "..", "..", ".."))
-sys.path.insert(0, os.path.join(SRC, "tests", "support"))
-import foamcase as fc  # noqa: E402
-from meltdem_report import check_relative, check_absolute, report  # noqa: E402
+from meltdem import paths
+from meltdem.case import foam as fc
+from meltdem.testing.report import check_relative, check_absolute, report
+
+SRC = paths.source_dir()
 
 TEST = "foam.laser_power"
-APP = os.path.join(os.environ.get("MELTDEM_BIN", ""), "meltdemLaserCheck")
+APP = paths.binary("meltdemLaserCheck")
 LX, LY, LZ = 200e-6, 200e-6, 100e-6
 NX, NY, NZ = 20, 20, 10
 DX, DY, DZ = LX / NX, LY / NY, LZ / NZ
@@ -92,7 +93,7 @@ def laser_lines(log):
             t = line.split()
             d = {t[i]: t[i + 1:i + 4] if t[i] == "position" else t[i + 1]
                  for i in range(0, len(t) - 1) if t[i] in ("t", "on", "position", "absorbed",
-                                                            "hitFraction", "integral", "min")}
+                                                           "hitFraction", "integral", "min")}
             out.append(dict(t=float(d["t"]), on=int(d["on"]), pos=np.array([float(v) for v in d["position"]]),
                             absorbed=float(d["absorbed"]), hit=float(d["hitFraction"]),
                             integral=float(d["integral"]), qmin=float(d["min"])))
@@ -264,7 +265,7 @@ def main():
     err = max(math.hypot(rr["pos"][0] - a, rr["pos"][1] - b) for rr, (a, b) in zip(rs, ref))
     ok &= check_absolute(TEST, "polyline path: max position error at 3 times [m]", err, 0.0, 1e-12)
 
-    # 6. evaporation (SPH eq. 10, 18)
+    # 6. evaporation (Fuchs2022 eq. 10, 18)
     case = make_case(root, "evap", flat, dict(base, position=vec((100e-6, 100e-6, z_top))))
     _, log = check_app(case, ["-T", "(2500 3000)"])
     ev = {}
@@ -279,8 +280,10 @@ def main():
     ok &= check_relative(TEST, "p_v(2500 K) [Pa] by hand", ev[2500.0][0], pv_hand, 1e-12)
     flux_hand = 0.82 * pv_hand * math.sqrt(1.1095e-3 / 2500) * (6.583e6 + 965 * (2500 - 663.731))
     ok &= check_relative(TEST, "eq. 18 heat flux at 2500 K [W/m2] by hand", ev[2500.0][1], flux_hand, 1e-12)
-    fl = lambda T: (0.82 * 5.4e4 * math.exp(-5e4 * (1 / T - 1 / 3000)) * math.sqrt(1.1095e-3 / T)
-                    * (6.583e6 + 965 * (T - 663.731)))
+
+    def fl(T):
+        return (0.82 * 5.4e4 * math.exp(-5e4 * (1 / T - 1 / 3000)) * math.sqrt(1.1095e-3 / T)
+                * (6.583e6 + 965 * (T - 663.731)))
     ok &= check_relative(TEST, "d flux/dT at 2500 K [W/m2/K] vs central difference (dT 1e-3 K)",
                          ev[2500.0][2], (fl(2500 + 1e-3) - fl(2500 - 1e-3)) / 2e-3, 1e-6)
     ok &= check_relative(TEST, "heat-loss field integral, flat surface, 2500 K [W] = flux * area",
@@ -290,7 +293,7 @@ def main():
     smear = np.interp(ZC, [35e-6, 65e-6], [1.0, 0.0])
     case = make_case(root, "evap_smear", smear, dict(base, position=vec((100e-6, 100e-6, z_top))))
     _, log = check_app(case, ["-T", "(2500)"])
-    loss = [float(l.split()[4]) for l in log.splitlines() if l.startswith("evaporationField")][0]
+    loss = [float(line.split()[4]) for line in log.splitlines() if line.startswith("evaporationField")][0]
     ok &= check_relative(TEST, "heat-loss integral, smeared interface (3 cells), 2500 K [W] = flux * area",
                          loss, flux_hand * LX * LY, 1e-9)
 

@@ -14,11 +14,11 @@ import tempfile
 
 import numpy as np
 
-src = os.environ["MELTDEM_SOURCE_DIR"]
-sys.path.insert(0, os.path.join(src, "tests", "support"))
-sys.path.insert(0, os.path.join(src, "tests", "support"))
-from meltdem_report import check_relative, check_absolute, check_at_most  # noqa: E402
-import foamcase as fc  # noqa: E402
+from meltdem import paths
+from meltdem.case import foam as fc
+from meltdem.testing.report import check_relative, check_absolute, check_at_most
+
+src = paths.source_dir()
 
 TEST = "foam.marangoni_flow"
 M, G = fc.METAL, fc.GAS
@@ -78,7 +78,8 @@ ok &= check_relative(TEST, f"surface velocity at t={t:g} s [m/s] vs two-fluid st
 off = os.path.join(work, "off")
 make_and_run(off, "off")
 U = fc.read_internal(os.path.join(off, fc.time_dirs(off)[-1], "U")).reshape(ny, nx, 3)
-ok &= check_at_most(TEST, "marangoni off: max surface |u_x| / reference", np.abs(U[j - 1:j + 1, mid, 0]).max() / ref, 0.01)
+ok &= check_at_most(TEST, "marangoni off: max surface |u_x| / reference", np.abs(U[j - 1:j + 1, mid, 0]).max() / ref,
+                    0.01)
 if ok:
     shutil.rmtree(work)
 else:

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Unit checks of meltdem::surfaceForces without the solver (app meltdemSurfaceCheck):
-sigma(T) of SPH eq. 8 with its lower bound, the direction and the integral of the Marangoni force
+sigma(T) of Fuchs2022 eq. 8 with its lower bound, the direction and the integral of the Marangoni force
 on a flat interface (exact: the Gauss gradient telescopes, so sum(F V) = (sigma(T_right) -
 sigma(T_left)) dz), its reversal for dSigmadT > 0, its tangency on a curved interface
 (circle: integral = |dsigma/dx| pi R dz), the recoil pressure's push into the metal, and the
@@ -8,21 +8,20 @@ dictionary checks (FatalIOError naming the entry).
 """
 import os
 import re
-import subprocess
 import sys
 import tempfile
 
 import numpy as np
 
-src = os.environ["MELTDEM_SOURCE_DIR"]
-sys.path.insert(0, os.path.join(src, "tests", "support"))
-sys.path.insert(0, os.path.join(src, "tests", "support"))
-from meltdem_report import check_absolute, check_relative, check_at_most, report  # noqa: E402
-import foamcase as fc  # noqa: E402
+from meltdem import paths
+from meltdem.case import foam as fc
+from meltdem.testing.report import check_absolute, check_relative, check_at_most
+
+src = paths.source_dir()
 
 TEST = "foam.marangoni_force"
-APP = os.path.join(os.environ["MELTDEM_BIN"], "meltdemSurfaceCheck")
-# SPH paper table 1 (molten stainless steel)
+APP = paths.binary("meltdemSurfaceCheck")
+# Fuchs2022 table 1 (molten stainless steel)
 ST = dict(sigma0=1.8, dSigmadT=-1.0e-3, Tsigma0=1700.0, sigmaMin=0.2)
 
 
@@ -101,7 +100,8 @@ ok &= check_relative(TEST, "flat interface: recoil force integral F_y [N] = -p_v
                      r["recoil"][1], -P_RECOIL * lx * g.dz, 1e-9)
 F = r["F"]
 band = np.abs(g.y - ly / 2) < g.dy
-ok &= check_at_most(TEST, "flat interface: force off the interface rows / max", np.abs(F[~band]).max() / r["max"], 1e-12)
+ok &= check_at_most(TEST, "flat interface: force off the interface rows / max", np.abs(F[~band]).max() / r["max"],
+                    1e-12)
 
 # 2. clipped: T 4300 K (left) .. 2300 K (right); sigma = sigmaMin above 3300 K
 c = os.path.join(work, "clipped")
@@ -112,7 +112,8 @@ r = check(c)
 ref = (sigma_ref(TR, ST) - sigma_ref(TL, ST)) * g.dz
 ok &= check_relative(TEST, "clipped at sigmaMin: integral F_x [N]", r["integral"][0], ref, 1e-9)
 hot = band & (T > 3300.0 + 2 * (TL - TR) / nx)
-ok &= check_at_most(TEST, "clipped at sigmaMin: |F| where sigma = sigmaMin / max", np.abs(r["F"][hot]).max() / r["max"], 1e-12)
+ok &= check_at_most(TEST, "clipped at sigmaMin: |F| where sigma = sigmaMin / max",
+                    np.abs(r["F"][hot]).max() / r["max"], 1e-12)
 
 # 3. dSigmadT > 0 reverses the flow direction (cold -> hot)
 c = os.path.join(work, "positive")
@@ -147,7 +148,8 @@ bad = [
     ("sigma0 <= 0", "    sigma0 0;\n    dSigmadT -1e-3;\n    Tsigma0 1700;\n    sigmaMin 0;\n", "sigma0"),
     ("Tsigma0 <= 0", "    sigma0 1.8;\n    dSigmadT -1e-3;\n    Tsigma0 -5;\n    sigmaMin 0.2;\n", "Tsigma0"),
     ("sigmaMin > sigma0", "    sigma0 1.8;\n    dSigmadT -1e-3;\n    Tsigma0 1700;\n    sigmaMin 2;\n", "sigmaMin"),
-    ("nSmooth < 0", "    sigma0 1.8;\n    dSigmadT -1e-3;\n    Tsigma0 1700;\n    sigmaMin 0.2;\n    nSmooth -1;\n", "nSmooth"),
+    ("nSmooth < 0", "    sigma0 1.8;\n    dSigmadT -1e-3;\n    Tsigma0 1700;\n    sigmaMin 0.2;\n    nSmooth -1;\n",
+     "nSmooth"),
     ("dSigmadT not a number", "    sigma0 1.8;\n    dSigmadT abc;\n    Tsigma0 1700;\n    sigmaMin 0.2;\n", "dSigmadT"),
 ]
 c = os.path.join(work, "flat")

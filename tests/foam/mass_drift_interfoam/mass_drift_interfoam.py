@@ -16,17 +16,16 @@ usage: mass_drift_interfoam.py [np] [--keep]   (np 2: decomposed run, the sums o
 """
 import os
 import shutil
-import subprocess
 import sys
 import tempfile
 
 import numpy as np
 
-src = os.environ["MELTDEM_SOURCE_DIR"]
-sys.path.insert(0, os.path.join(src, "tests", "support"))
-sys.path.insert(0, os.path.join(src, "tests", "support"))
-from meltdem_report import check_at_most  # noqa: E402
-import foamcase as fc  # noqa: E402
+from meltdem import paths
+from meltdem.case import foam as fc
+from meltdem.testing.report import check_at_most
+
+src = paths.source_dir()
 
 
 def edit(path, fn):
@@ -45,7 +44,7 @@ def main():
     case = os.path.join(work, "damBreak")
     shutil.copytree(os.path.join(src, "tests", "foam", "damBreak"), case)
     shutil.copy(os.path.join(case, "0", "alpha.water.orig"), os.path.join(case, "0", "alpha.water"))
-    lib = os.path.join(os.path.dirname(os.environ["MELTDEM_BIN"]), "lib", "libmeltdemModels.so")
+    lib = os.path.join(os.path.dirname(paths.bin_dir()), "lib", "libmeltdemModels.so")
     edit(os.path.join(case, "system", "controlDict"),
          lambda t: t.replace("writePrecision  6;", "writePrecision  17;")
          .replace("runTimeModifiable yes;", "runTimeModifiable no;")
@@ -55,7 +54,7 @@ def main():
     fc.run(["blockMesh"], case, "log.blockMesh")
     fc.run(["setFields"], case, "log.setFields")
     fc.run(["postProcess", "-func", "writeCellVolumes", "-time", "0"], case, "log.V")
-    solver = os.path.join(os.environ["MELTDEM_BIN"], "stock-interFoam")
+    solver = paths.binary("stock-interFoam")
     if nproc > 1:
         fc.run(["decomposePar"], case, "log.decomposePar")
         fc.run(["mpirun", "-np", str(nproc), solver, "-parallel"], case, "log.solver")

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
-"""CI-sized material-jetting scene (SPH paper section 4.3, tables 1-3; builder and full-size
+"""CI-sized material-jetting scene (Fuchs2022 §4.3, tables 1-3; builder and full-size
 variant in examples/mjt-droplets): axisymmetric 50 um steel droplet at 2500 K, 1.6 m/s onto a
-20 um substrate at 1500 K (paper: remelt depth ~16 um at t ~ 0.075 ms) and at 500 K (paper: no
+20 um substrate at 1500 K (Fuchs2022: remelt depth ~16 um at t ~ 0.075 ms) and at 500 K (Fuchs2022: no
 noticeable remelting). 2 um cells, cylinder radius 60 um, height 100 um, to t = 0.08 ms.
 """
 import os
@@ -10,11 +10,14 @@ import sys
 import tempfile
 import argparse
 
-src = os.environ["MELTDEM_SOURCE_DIR"]
-sys.path.insert(0, os.path.join(src, "tests", "support"))
-sys.path.insert(0, os.path.join(src, "examples", "mjt-droplets"))
-from meltdem_report import check_relative, check_at_most  # noqa: E402
-import mjt_case  # noqa: E402
+from meltdem import paths
+from meltdem.loader import load_module
+from meltdem.paths import examples_dir
+from meltdem.testing.report import check_relative, check_at_most
+
+src = paths.source_dir()
+
+mjt_case = load_module(os.path.join(examples_dir(), "mjt-droplets", "mjt_case.py"))
 
 TEST = "foam.mjt"
 work = tempfile.mkdtemp(prefix="mjt.")

@@ -5,13 +5,11 @@ plate: melt-pool width (2 max y of the T = Tm isotherm in the top metal cell pla
 
 Half model (symmetry plane y = 0, so the laser power in the case is P/2), metal z < 0 with two gas
 cells above (the laser is deposited through grad(alpha) there), L = 0 (Rosenthal has no latent
-heat), the SPH paper's steel (k 35.95, rho 7430, cp 965). eta P = 25 W, v = 0.25 m/s, 1/e^2 radius
+heat), Fuchs2022's steel (k 35.95, rho 7430, cp 965). eta P = 25 W, v = 0.25 m/s, 1/e^2 radius
 10 um (the isotherm is ~39 um off-axis), 5 um cells, 200 um of travel (transient width within
 0.8 % of the quasi-steady one; the exact transient Gaussian solution is printed for information).
 Also: absorbed laser power in every step = eta P/2 (solver log).
 Environment: ROSENTHAL_NP (processors, default 1), ROSENTHAL_CELL (cell size, default 5e-6).
-Measured (5 um): width -0.53 % vs Rosenthal (serial and np 2 agree to 1e-8); 10 um cells
--0.12 %, 2.5 um cells -0.71 % (each vs Rosenthal at its own top-cell depth).
 """
 import os
 import re
@@ -20,12 +18,12 @@ import tempfile
 
 import numpy as np
 
-SRC = os.environ.get("MELTDEM_SOURCE_DIR", os.path.join(os.path.dirname(__file__), "..", "..", ".."))
-sys.path.insert(0, os.path.join(SRC, "tests", "support"))
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import foamcase as fc  # noqa: E402
-from meltdem_report import check_relative, report  # noqa: E402
-from rosenthal_ref import rosenthal, width_at_depth, gaussian_transient  # noqa: E402
+from meltdem import paths
+from meltdem.analysis.rosenthal import rosenthal, width_at_depth, gaussian_transient
+from meltdem.case import foam as fc
+from meltdem.testing.report import check_relative, report
+
+SRC = paths.source_dir()
 
 TEST = "foam.rosenthal" + (".np" + os.environ["ROSENTHAL_NP"] if os.environ.get("ROSENTHAL_NP", "1") != "1" else "")
 K, RHO, CP = 35.95, 7430.0, 965.0
@@ -144,7 +142,8 @@ def main():
     xsrc = X0 + V * T_END
     best = 0.0
     for xi in np.linspace(-150e-6, 30e-6, 61):
-        g = lambda y: gaussian_transient(xsrc + xi, y, zc, T_END, q, K, A, RHO * CP, T0, RADIUS, X0, V, nt=2000)
+        def g(y):
+            return gaussian_transient(xsrc + xi, y, zc, T_END, q, K, A, RHO * CP, T0, RADIUS, X0, V, nt=2000)
         if g(0.0) < TM:
             continue
         lo, hi = 0.0, 200e-6

@@ -23,14 +23,14 @@ import numpy as np
 from scipy.optimize import brentq
 from scipy.special import erf
 
-src = os.environ["MELTDEM_SOURCE_DIR"]
-sys.path.insert(0, os.path.join(src, "tests", "support"))
-sys.path.insert(0, os.path.join(src, "tests", "support"))
-from meltdem_report import check_relative, check_at_most  # noqa: E402
-import foamcase as fc  # noqa: E402
+from meltdem import paths
+from meltdem.case import foam as fc
+from meltdem.testing.report import check_relative, check_at_most
+
+src = paths.source_dir()
 
 TEST = "foam.stefan"
-RHO, CP, K, L = 7430.0, 965.0, 35.95, 2.7e5      # steel-like (SPH paper table 1; L typical of steel)
+RHO, CP, K, L = 7430.0, 965.0, 35.95, 2.7e5      # steel-like (Fuchs2022 table 1; L typical of steel)
 TM, TW, DT_MELT = 1700.0, 2000.0, 1.0
 LENGTH, T_END = 1.0e-3, 0.04
 A = K / (RHO * CP)
@@ -75,8 +75,8 @@ energyControls {{ nCorrectors 100; tolerance 1e-12; }}
 }
 """)
     fc.fv_schemes(case, extra_div="    div(rhoCpPhi,T) Gauss upwind;\n")
-    fc.fv_solution(case, p_ref_cell=0, extra_solvers='    "T.*" { solver PBiCGStab; preconditioner DILU; '
-                                       'tolerance 1e-13; relTol 0; }\n')
+    fc.fv_solution(case, p_ref_cell=0,
+                   extra_solvers='    "T.*" { solver PBiCGStab; preconditioner DILU; tolerance 1e-13; relTol 0; }\n')
     fc.run(["blockMesh"], case, "log.blockMesh")
     return g
 

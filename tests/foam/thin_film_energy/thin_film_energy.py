@@ -1,9 +1,9 @@
 #!/usr/bin/python3
-"""Energy transport where metal streams through near-empty gas cells (issue 6, the pbf stops).
+"""Energy transport where metal streams through near-empty gas cells (what stopped the pbf scenes).
 
-A mushy steel drop (SPH paper table 1 metal, latent heat 2.7e5 J/kg between 1690 and 1700 K,
+A mushy steel drop (Fuchs2022 table 1 metal, latent heat 2.7e5 J/kg between 1690 and 1700 K,
 at 1695 K, liquid fraction 0.5; no Darcy term) crosses a closed 2D box at 1 m/s through the
-paper's gas (rho 7.43, cp 10: 1e-5 of the metal's heat capacity) at 500 K. Surface tension and
+Fuchs2022 gas (rho 7.43, cp 10: 1e-5 of the metal's heat capacity) at 500 K. Surface tension and
 gravity off. Behind the drop the cells empty: in one step a cell keeps alpha ~ 1e-6 while the
 metal leaving it carries up to 3e3 times the capacity the cell keeps (its thermal Courant
 number). meltdemFoam carries the latent heat with the upwind cell's liquid fraction, linearised
@@ -17,8 +17,8 @@ Checks:
   - the liquid-fraction iterations converge at every step;
   - the same case with maxThermalCo 1e30 (the case's vanLeer on every face) is run and its
     range printed (it stays bounded too: here the latent transport is what matters).
-The solver before this change (vanLeer latent transport with the cell's own linearisation)
-reached 3246 K in this case, with 127 of 145 steps unconverged; so this test fails on it.
+vanLeer latent transport with the cell's own linearisation leaves the range and fails to
+converge here, so this test fails on it.
 usage: thin_film_energy.py [--keep]
 """
 import os
@@ -28,10 +28,11 @@ import tempfile
 
 import numpy as np
 
-src = os.environ["MELTDEM_SOURCE_DIR"]
-sys.path.insert(0, os.path.join(src, "tests", "support"))
-from meltdem_report import check_absolute, check_at_most  # noqa: E402
-import foamcase as fc  # noqa: E402
+from meltdem import paths
+from meltdem.case import foam as fc
+from meltdem.testing.report import check_absolute, check_at_most
+
+src = paths.source_dir()
 
 TEST = "foam.thin_film_energy"
 M = fc.METAL

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Fuzzing the inputs a user writes (issue 17): random mutations of valid DEM inputs and coupled
+"""Fuzzing the inputs a user writes: random mutations of valid DEM inputs and coupled
 cases, each run the way a user runs it, under a time limit. Every mutation must end either
 
   ran      exit code 0 (coupled: the ledger's per-step system mass and energy errors below
@@ -12,7 +12,7 @@ and never with a crash (a signal, an abort, 'terminate called', a Python traceba
 time limit), or unclosed balances after exit code 0.
 
 Seeds: the DEM input tests/cli/kill_resume/in.bed cut to 3000 steps (run by meltdem-lmp), the
-thesis 2.3 channel with one particle cut to 5e-4 s and ded-stream's CI case cut to 0.4 us (both
+Codina2019 §2.3 channel with one particle cut to 5e-4 s and ded-stream's CI case cut to 0.4 us (both
 run by `meltdem run CASE --no-analyse`: check, solver, post-processing). Mutations: a number
 made out of range (0, negative, 1e300, 1e-300), nan or inf, a number replaced by a word, a token
 deleted, a keyword misspelt, a line deleted or duplicated, a file truncated.
@@ -32,13 +32,12 @@ import subprocess
 import sys
 import tempfile
 
-SRC = os.environ["MELTDEM_SOURCE_DIR"]
-BIN = os.environ["MELTDEM_BIN"]
-sys.path.insert(0, os.path.join(SRC, "tests", "support"))
-sys.path.insert(0, os.path.join(SRC, "tests", "coupling"))
-sys.path.insert(0, os.path.join(SRC, "tests", "cli"))
-from meltdem_report import check_absolute  # noqa: E402
-from clitest import meltdem_command  # noqa: E402
+from meltdem import paths
+from meltdem.testing.cli import meltdem_command
+from meltdem.testing.report import check_absolute
+
+SRC = paths.source_dir()
+BIN = paths.bin_dir()
 
 N_DEM, N_COUPLED, SEED = (int(x) for x in sys.argv[1:4])
 LONG = "--long" in sys.argv
@@ -143,7 +142,7 @@ def coupled_seeds(work):
         "thesis_particle", os.path.join(SRC, "tests", "coupling", "thesis_particle", "thesis_particle.py"))
     tp = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(tp)
-    import coupledcase as cc
+    from meltdem.case import coupled as cc
     channel = os.path.join(work, "channel_seed")
     cc.channel_case(channel, "centre", dict(d=tp.D, rho=tp.RHO_P, cp=tp.CP_P, Tm=tp.TM, L=tp.L, T0=0.0, y=17.6e-3),
                     t_end=5e-4)
@@ -232,11 +231,12 @@ def main():
         print(f"{kind}: {n} mutations (seed {SEED}): " + ", ".join(f"{k} {v}" for k, v in sorted(c.items())))
         ok &= check_absolute(TEST, f"{kind} mutations tried", sum(c.values()), n, 0)
         for good in ("ran", "named"):
-            check_absolute(TEST, f"{kind} mutations that {'ran with closed balances' if good == 'ran' else 'stopped with a named error'} (count)",
+            check_absolute(TEST, f"{kind} mutations that "
+                           f"{'ran with closed balances' if good == 'ran' else 'stopped with a named error'} (count)",
                            c.get(good, 0), c.get(good, 0), 0)
         for bad in ("crash", "hang", "unclosed", "unnamed"):
             ok &= check_absolute(TEST, f"{kind} mutations ending in a {bad}", c.get(bad, 0), 0, 0)
-    import foamcase as fc
+    from meltdem.case import foam as fc
     return fc.finish(ok, work)
 
 

@@ -1,16 +1,16 @@
 #!/usr/bin/env python3
-"""CI-sized binder-jetting scene (SPH paper section 4.2; examples/bjt-droplet/scene.py --ci):
+"""CI-sized binder-jetting scene (Fuchs2022 §4.2; examples/bjt-droplet/scene.py --ci):
 an 80 um binder droplet (table 4) at 1, 10 and 50 m/s into a DEM-settled log-normal bed of 195
 steel particles (16-32 um) on a 200 x 200 um floor, 10 um cells, isothermal coupling (drag and
 buoyancy only), to t = 0.1 / 0.05 / 0.02 ms; plus the droplet's fall without particles.
 
-The paper gives no numbers, only what it saw; checked here:
+Fuchs2022 gives no numbers, only what it saw; checked here:
   - physical references: binder volume conserved (round-off), the ledger's per-step continuum
-    mass balance (thesis eq. 2.20), no heat exchanged (isothermal), the impulse the particles
+    mass balance (Codina2019 eq. 2.20), no heat exchanged (isothermal), the impulse the particles
     took equals what the continuum got (action = reaction), no particle lost, and the droplet's
     velocity before contact against its kinematics (v0 + g t with the gas drag of an isolated
     sphere);
-  - the paper's ordering as measurable statements: footprint(10) > footprint(1) (at the paper's
+  - Fuchs2022's ordering as measurable statements: footprint(10) > footprint(1) (at Fuchs2022's
     times and the largest over the run), max particle speed(50) > (10) > (1),
     penetration(10) < penetration(1), displaced(50) > displaced(10) > displaced(1), booked XFAIL
     where this unresolved-particle model does not reproduce them (see the scene's README).
@@ -22,12 +22,14 @@ import tempfile
 
 import numpy as np
 
-src = os.environ["MELTDEM_SOURCE_DIR"]
-sys.path.insert(0, os.path.join(src, "tests", "support"))
-sys.path.insert(0, os.path.join(src, "examples", "bjt-droplet"))
-from meltdem_report import check_absolute, check_at_least, check_at_most, check_relative  # noqa: E402
-import scene  # noqa: E402
-import coupledcase as cc  # noqa: E402
+from meltdem import paths
+from meltdem import scene as scenes
+from meltdem.case import coupled as cc
+from meltdem.testing.report import check_absolute, check_at_least, check_at_most, check_relative
+
+src = paths.source_dir()
+
+scene = scenes.module("bjt-droplet")
 
 TEST = "scenes.bjt-droplet"
 UNRESOLVED = ("unresolved particles: the bed only drags on the binder (point drag), it cannot block it; the "
@@ -71,7 +73,7 @@ def main():
                             abs(float(np.sum(rows["mom_z_exchange"])) + drag) / max(abs(drag), 1e-300), 1e-12)
         ok &= check_at_least(TEST, f"{k}: impulse the bed took from the binder, -z [kg m/s] (> 0: the droplet "
                              "pushes the bed)", -drag, 1e-30)
-    # the paper's ordering (section 4.2), at its times (0.1 ms for 1 m/s, 0.05 ms for 10 m/s)
+    # Fuchs2022's ordering (§4.2), at its times (0.1 ms for 1 m/s, 0.05 ms for 10 m/s)
     ok &= check_at_least(TEST, "footprint radius at the paper's times, 10 m/s minus 1 m/s [um] (paper: spread "
                          "wider; bound dx/2)", r["v10_footprint_radius_um"] - r["v1_footprint_radius_um"], dx_um / 2,
                          xfail="the 10 m/s droplet spreads, then recoils (surface tension): at 0.05 ms its footprint "

@@ -1,21 +1,21 @@
 #!/usr/bin/env python3
-"""CI variant of examples/ded-stream (SPH paper section 4.4): five 16 um steel particles at
+"""CI variant of examples/ded-stream (Fuchs2022 §4.4): five 16 um steel particles at
 10 m/s along a 45 degree axis into the melt pool of a 312 W laser (d_w = 140 um) on a 20 um
 substrate; meltdemFoam + LAMMPS coupled, 10 um cells (1.6 per particle diameter, overlap
 model). Two variants: laser on throughout (to 0.020 ms) and laser off at 0.012 ms (to 0.026 ms).
 
 Checks (measured | reference | tolerance):
-- laser on: pool diameter at 0.018 ms vs the paper's ~130 um (15 %);
-- arrival of the first particle at the substrate vs straight-line kinematics (5 %) and vs the
-  paper's ~0.006 ms (20 %); it is deflected by the solid substrate (paper: "a deflection ... as
+- laser on: pool diameter at 0.018 ms vs Fuchs2022's ~130 um (15 %);
+- arrival of the first particle at the substrate vs straight-line kinematics (5 %) and vs
+  Fuchs2022's ~0.006 ms (20 %); it is deflected by the solid substrate (Fuchs2022: "a deflection ... as
   it hits the solid substrate at the bottom of the melt pool"): rebound upwards;
 - absorbed laser power: continuum + particles = eta P on every lit step (1e-9);
-- switch-off (to the paper's 0.026 ms): no laser power after 0.012 ms (exact), the pool cools,
-  shrinks and is solid at 0.026 ms (paper's figure), the particle reaching the pool after the
+- switch-off (to Fuchs2022's 0.026 ms): no laser power after 0.012 ms (exact), the pool cools,
+  shrinks and is solid at 0.026 ms (Fuchs2022's figure), the particle reaching the pool after the
   switch-off (particle 4) is still solid and bounces off the solid metal, and the last one
   (particle 5) bounces off the solidified metal and flies above the substrate, unmolten, at
-  0.026 ms (paper);
-- ledger: continuum mass/energy per-step errors (coupledcase.check_balances) and the system
+  0.026 ms (Fuchs2022);
+- ledger: continuum mass/energy per-step errors (meltdem.case.coupled.check_balances) and the system
   (particles + continuum) enthalpy balance.
 """
 import json
@@ -26,14 +26,15 @@ import tempfile
 
 import numpy as np
 
-SRC = os.environ["MELTDEM_SOURCE_DIR"]
-sys.path.insert(0, os.path.join(SRC, "tests", "support"))
-sys.path.insert(0, os.path.join(SRC, "tests", "coupling"))
-sys.path.insert(0, os.path.join(SRC, "examples", "ded-stream"))
-from meltdem_report import check_absolute, check_at_most, check_relative  # noqa: E402
-import coupledcase as cc  # noqa: E402
-import foamcase as fc  # noqa: E402
-import scene  # noqa: E402
+from meltdem import paths
+from meltdem import scene as scenes
+from meltdem.case import coupled as cc
+from meltdem.case import foam as fc
+from meltdem.testing.report import check_absolute, check_at_most, check_relative
+
+SRC = paths.source_dir()
+
+scene = scenes.module("ded-stream")
 
 TEST = "scenes.ded-stream"
 SCENE = os.path.join(SRC, "examples", "ded-stream", "scene.py")
@@ -64,8 +65,8 @@ def laser_checks(case, s, label):
     if np.any(lit & around):
         ok &= check_at_most(TEST, f"{label}: the same on the {int(np.sum(lit & around))} steps where a particle "
                             "melted away (or the step after)", float(np.max(err[lit & around])), 1e-9)
-    # (this was lost light before the coupling handed a melting particle's unabsorbed light to
-    # its melt and stopped molten particles from casting a shadow: up to 2.6 % of eta P)
+    # (closed because the coupling hands a melting particle's unabsorbed light to its melt and
+    # molten particles cast no shadow)
     return ok, lit, t, dt, cont, part
 
 
@@ -97,7 +98,7 @@ def main():
                                "read off figures")
     ok &= check_at_most(TEST, "laser on: particle 1 molten fraction when it reaches the substrate "
                         "(paper: enters the pool still solid)", molten_at_arrival(case, 1), 0.5)
-    tr = scene.read_dump(case)[1]
+    tr = scene.read_tracks(case)[1]
     ok &= check_absolute(TEST, "laser on: particle 1 deflected upwards by the solid substrate (1 = yes)",
                          float(tr[:, 6].max() > 0), 1.0, 0)
     lok, *_ = laser_checks(case, s, "laser on")
@@ -122,7 +123,7 @@ def main():
                         peak[iend] / peak[i12], 0.9)
     ok &= check_at_most(TEST, "switch-off: pool diameter at 0.026 ms / at 0.012 ms (the pool shrinks: <= 1)",
                         diam[iend] / diam[i12], 1.0)
-    tr4 = scene.read_dump(case).get(4, np.zeros((1, 10)))
+    tr4 = scene.read_tracks(case).get(4, np.zeros((1, 10)))
     ok &= check_absolute(TEST, "switch-off: particle 4 (reaching the pool after the switch-off) bounces off the "
                          "solid metal (1 = yes; paper: the particle arriving after the switch-off bounces off)",
                          float(tr4[:, 6].max() > 0), 1.0, 0)
@@ -152,7 +153,7 @@ def molten_at_arrival(case, pid):
     deflected)."""
     s = json.load(open(os.path.join(case, "summary.json")))
     e = s["particles"][pid - 1]
-    tr = scene.read_dump(case).get(pid)
+    tr = scene.read_tracks(case).get(pid)
     if tr is None or e.get("arrival_ms") is None:
         return 1.0   # never arrived: counts as a miss of the 'solid on arrival' checks
     i = np.searchsorted(tr[:, 0], e["arrival_ms"] * 1e-3 - 1e-12)

@@ -1,13 +1,13 @@
 #!/usr/bin/env python3
-"""scenes.lmd-track: the CI variant of examples/lmd-track (thesis 4.1, table 4.1 conditions).
+"""scenes.lmd-track: the CI variant of examples/lmd-track (Codina2019 §4.1, table 4.1 conditions).
 
 Half model, 0.5 mm cells, 1.2 mm of track (0.72 s) from the quasi-steady plate temperature: a
 1 kW Gaussian beam (2.5 mm) at 100 mm/min on an AISI 304 plate. Two runs:
 
-1. bare track (laser only, ~40 s): fused width and penetration vs table 4.2 (3.46 / 0.61 mm),
-   within one cell of this mesh (0.5 mm; the thesis states its own accuracy as limited by its
+1. bare track (laser only): fused width and penetration vs table 4.2 (3.46 / 0.61 mm),
+   within one cell of this mesh (0.5 mm; Codina2019 states its own accuracy as limited by its
    0.25 mm cells), and the share of the powder spot falling on the pool surface vs the
-   deposition efficiency 85.8 % (within 5 points: the thesis simulation is 0.7 points off).
+   deposition efficiency 85.8 % (within 5 points: the Codina2019 simulation is 0.7 points off).
 2. coupled meltdemFoam + LAMMPS with the powder stream (fix powder/insert, 1.6 g/min, 40-200 um)
    inserted during the run: the run must reach the end of the track; then bead width, height,
    penetration and deposition efficiency (deposited / (deposited + lost)) vs table 4.2 with the
@@ -25,23 +25,23 @@ import os
 import sys
 import tempfile
 
-SRC = os.environ["MELTDEM_SOURCE_DIR"]
-sys.path.insert(0, os.path.join(SRC, "tests", "support"))
-sys.path.insert(0, os.path.join(SRC, "tests", "coupling"))
-sys.path.insert(0, os.path.join(SRC, "examples", "lmd-track"))
-from meltdem_report import check_absolute, check_at_most, check_relative  # noqa: E402
-import coupledcase as cc  # noqa: E402
-import foamcase as fc  # noqa: E402
-import scene  # noqa: E402
+from meltdem import paths
+from meltdem import scene as scenes
+from meltdem.case import coupled as cc
+from meltdem.case import foam as fc
+from meltdem.testing.report import check_absolute, check_at_most, check_relative
+
+SRC = paths.source_dir()
+
+scene = scenes.module("lmd-track")
 
 TEST = "scenes.lmd-track"
 CELL_MM = scene.VARIANTS["ci"]["dx"] * 1e3
 # the measured section (1.25-1.75 mm behind the final beam) lies at the start of the 1.2 mm CI
 # track: it has not received the powder the beam would bring before the start
 SHORT = "CI: the 1.2 mm track's measured section lies at its start and misses part of its powder"
-# measured on the coupled CI run once it reached the end of the track (d3a811d + start-of-step
-# heat): width 2.53 mm, efficiency 77.6 % -- the 1.2 mm CI track from a cold powder start is
-# shorter than the bead's own length (2.5 mm spot), so neither is at its steady value yet
+# the 1.2 mm CI track from a cold powder start is shorter than the bead's own length (2.5 mm
+# spot), so neither the coupled width nor the efficiency is at its steady value yet
 SHORT_COUPLED = "CI: 1.2 mm of track at 0.5 mm cells is shorter than the 2.5 mm spot: no steady bead yet"
 
 
@@ -107,7 +107,8 @@ def main():
     import numpy as np
     ok &= check_at_most(TEST, "worst per-step system mass error (particles + continuum + pending)",
                         float(np.max(np.abs(steps["mass_system_error"]))), 1e-12)
-    ok &= check_at_most(TEST, "cumulative system mass error", abs(float(led["mass_cumulative_system_error"][-1])), 1e-12)
+    ok &= check_at_most(TEST, "cumulative system mass error", abs(float(led["mass_cumulative_system_error"][-1])),
+                        1e-12)
     return fc.finish(ok, work, keep)
 
 

@@ -1,10 +1,10 @@
 #!/usr/bin/env python3
-"""CI variant of examples/pbf-point (SPH paper section 4.5, point melting), coupled
+"""CI variant of examples/pbf-point (Fuchs2022 §4.5, point melting), coupled
 meltdemFoam + LAMMPS: 100 log-normal grains (16-32 um, poured by DEM) on a 40 um steel
 substrate, 160 x 140 x 160 um of 10 um cells (overlap distribution), 312 W laser (eta 0.5,
 d_w = 140 um) fixed at the centre, on for 30 us, off until 40 us; recoil and evaporation on.
 
-References: the paper has only qualitative statements for this case (a keyhole forms when the
+References: Fuchs2022 has only qualitative statements for this case (a keyhole forms when the
 peak temperature exceeds boiling; grains are ejected from the melt-pool edge); exact ones:
 absorbed laser energy = eta P t_on (continuum + grains), grain mass = remaining + molten + lost,
 the ledger's per-step balances.
@@ -13,20 +13,23 @@ import os
 import sys
 import tempfile
 
-SRC = os.environ["MELTDEM_SOURCE_DIR"]
-sys.path.insert(0, os.path.join(SRC, "tests", "support"))
-sys.path.insert(0, os.path.join(SRC, "examples", "pbf-point"))
-from meltdem_report import check_at_least, check_at_most, check_relative  # noqa: E402
-import pbf  # noqa: E402
-import coupledcase as cc  # noqa: E402
-import foamcase as fc  # noqa: E402
+from meltdem import paths
+from meltdem.case import coupled as cc
+from meltdem.case import foam as fc
+from meltdem.loader import load_module
+from meltdem.paths import examples_dir
+from meltdem.testing.report import check_at_least, check_at_most, check_relative
+
+SRC = paths.source_dir()
+
+pbf = load_module(os.path.join(examples_dir(), "pbf-point", "pbf.py"))
 
 TEST = "scenes.pbf-point"
 NO_KICK = ("; no recoil, and since 53da1c5 no grain is kicked out of freezing metal (the 4-27 grains "
            "counted before were that kick)")
 
 
-# wall-clock limit of the solver: the CI variant takes ~2 min idle; a run whose fluid step
+# wall-clock limit of the solver: a run whose fluid step
 # collapses (explicit drag reaction in the light gas, see examples/pbf-point/README.md) is
 # stopped and reported instead of running for hours
 LIMIT_S = float(os.environ.get("MELTDEM_PBF_LIMIT_S", "420"))
@@ -65,7 +68,7 @@ def common_checks(test, case, s, stop=None, short=None):
     ok &= check_relative(test, "laser energy absorbed by continuum + grains vs eta P t_on [J]",
                          s["laser_energy_absorbed_J"], s["laser_energy_eta_P_t_J"], 1e-6)
     # after a stop the last step's grains (LAMMPS advanced, the fluid step blew up) are not all
-    # in the tally: measured 5.8e-9 at the point CI's stop; the complete line run closes to 0
+    # in the tally
     ok &= check_at_most(test, "|grain mass remaining + molten + lost - initial| / initial",
                         abs(s["grain_mass_balance_rel"]), 1e-12,
                         xfail=("tally at the step the coupling stopped: " + stop[:100]) if stop else None)
@@ -85,20 +88,19 @@ def main():
     work = tempfile.mkdtemp(prefix="meltdem-pbf-point-")
     case = os.path.join(work, "case")
     s, stop = run_case(case, "point-ci")
-    # the CI laser is on for 30 us, the paper's for 100 us: measured (complete run, 10 um cells)
-    # the pool is 8.2 um deep, the peak 2994 K and still rising at switch-off, so the boiling
-    # point and the keyhole it opens come later than the CI run goes (the full variant's test)
+    # the CI laser is on for 30 us, Fuchs2022's for 100 us: the peak is still rising at
+    # switch-off, so the boiling point and the keyhole it opens come later than the CI run goes
+    # (the full variant's test)
     short = (f"CI laser on 30 of the paper's 100 us: the peak ({s['peak_metal_T_K']:.0f} K at "
              f"{s['peak_T_time_s'] * 1e6:.0f} us) is still rising at switch-off")
     ok = common_checks(TEST, case, s, stop, short=short)
-    # paper: the peak exceeds boiling and recoil opens a keyhole (depression of the surface)
+    # Fuchs2022: the peak exceeds boiling and recoil opens a keyhole (depression of the surface)
     ok &= check_at_least(TEST, "peak metal temperature [K] vs boiling T_v (paper: exceeded)",
                          s["peak_metal_T_K"], pbf.T_BOIL, xfail=stopped(s, stop) or short)
     ok &= check_at_least(TEST, "keyhole depth below the initial substrate surface [um] (paper: deep "
                          "keyhole; at least one cell)", s["keyhole_depth_max_um"], 10.0,
                          xfail=stopped(s, stop) or short + "; no boiling, no recoil")
-    # grains thrown out of the bed: the paper's come with the keyhole; the 4-27 grains counted
-    # here before 53da1c5 were pushed out of freezing metal by the solid-metal contact
+    # grains thrown out of the bed: Fuchs2022's come with the keyhole
     ok &= check_at_least(TEST, "grains ejected (paper: ejected from the melt-pool edge)", s["grains_ejected"], 1,
                          xfail=stopped(s, stop) or short + NO_KICK)
     return fc.finish(ok, work, keep)

@@ -1,17 +1,17 @@
 #!/usr/bin/env python3
-"""scenes.slm-track: CI variant of examples/slm-track (thesis 4.2.2, tables 4.5/4.6).
+"""scenes.slm-track: CI variant of examples/slm-track (Codina2019 §4.2.2, tables 4.5/4.6).
 
-Pours the 0.3 x 0.3 mm powder bed (examples/powder-bed, closed box, thesis table 4.3), then
+Pours the 0.3 x 0.3 mm powder bed (examples/powder-bed, closed box, Codina2019 table 4.3), then
 scans it coupled (meltdemFoam + LAMMPS): 100 W, 0.1 mm Gaussian spot, 0.5 m/s, absorptivity
 0.5, SS304 grains 15-45 um with alpha 0.5 (particles and walls), on a solid SS304 substrate,
 30 um cells, 0.2 mm of track. Checks:
 - absorbed laser power (continuum + particles) = eta P in every fluid step of the scan (1e-9)
   and the absorbed energy = eta P t_scan (1e-9);
-- particle ledger balances: worst per-step continuum mass and energy errors (coupledcase);
+- particle ledger balances: worst per-step continuum mass and energy errors (meltdem.case.coupled);
 - track width vs the conduction estimate for the same eta P and v on bare SS304 (Gaussian
   surface source of the 0.1 mm spot, quasi-steady; 30 %: the powder and the latent heat take
   part of the heat, and the cells are 30 um);
-- speed of the ejected particles vs the thesis's ~1 m/s (50 %);
+- speed of the ejected particles vs Codina2019's ~1 m/s (50 %);
 - no DEM update reached the integrator's 10 m/s speed cap (pop-corn watch);
 and reports the melted depth, bead height, particle counts and the denudation width.
 """
@@ -19,13 +19,15 @@ import os
 import sys
 import tempfile
 
-SRC = os.environ["MELTDEM_SOURCE_DIR"]
-sys.path.insert(0, os.path.join(SRC, "tests", "support"))
-sys.path.insert(0, os.path.join(SRC, "examples", "slm-track"))
-from meltdem_report import check_at_most, check_relative, report  # noqa: E402
-import scene  # noqa: E402
-import coupledcase as cc  # noqa: E402
-import foamcase as fc  # noqa: E402
+from meltdem import paths
+from meltdem import scene as scenes
+from meltdem.case import coupled as cc
+from meltdem.case import foam as fc
+from meltdem.testing.report import check_at_most, check_relative, report
+
+SRC = paths.source_dir()
+
+scene = scenes.module("slm-track")
 
 TEST = "scenes.slm-track"
 

@@ -9,6 +9,8 @@ import subprocess
 
 import numpy as np
 
+from .. import paths
+
 HEADER = """FoamFile
 {{
     version     2.0;
@@ -110,7 +112,7 @@ boundary
 (
 {bnd});
 mergePatchPairs ();
-"""
+"""  # noqa: E501  (a long line of the blockMeshDict written verbatim)
         dictionary(case, "system/blockMeshDict", body)
 
 
@@ -299,7 +301,7 @@ def alpha_rect(grid, x0, x1, y0, y1, nsub=8):
     return a / nsub ** 2
 
 
-# SPH paper tables 1-3 (stainless steel near Tm = 1700 K, atmospheric gas scaled as there)
+# Fuchs2022 tables 1-3 (stainless steel near Tm = 1700 K, atmospheric gas scaled as there)
 METAL = dict(rho=7430.0, mu=6.0e-3, cp=965.0, k=35.95, sigma0=1.8, dSigmadT=-1.0e-3, Tsigma0=1700.0,
              sigmaMin=0.2, Tm=1700.0)
 GAS = dict(rho=7.43, mu=6.0e-4, cp=10.0, k=0.026)
@@ -324,7 +326,7 @@ def meltdem_properties(case, physics=None, surface=None, extra=""):
 def solver():
     """The solver under test: $MELTDEM_FOAM_SOLVER (to try a case with another build) or
     $MELTDEM_BIN/meltdemFoam."""
-    return os.environ.get("MELTDEM_FOAM_SOLVER") or os.path.join(os.environ["MELTDEM_BIN"], "meltdemFoam")
+    return os.environ.get("MELTDEM_FOAM_SOLVER") or paths.binary("meltdemFoam")
 
 
 def contour_radii(grid, alpha, xc, yc, level=0.5):

@@ -1,15 +1,19 @@
 """Running meltdem-lmp from a test: one input text in a scratch folder, the output read back.
 
-    from lammps_run import run, thermo_runs, check_errors
+    from meltdem.testing.lammps_run import run, thermo_runs, check_errors
     rc, out = run(text, np=2)
 """
 import os
 import subprocess
 import tempfile
 
-from meltdem_report import report
+from .. import paths
+from meltdem.testing.report import report
 
-LMP = os.path.join(os.environ["MELTDEM_BIN"], "meltdem-lmp")
+
+def lmp():
+    """The build's meltdem-lmp (MELTDEM_BIN, looked up when called)."""
+    return paths.binary("meltdem-lmp")
 
 
 def _launch(cmd, cwd, np, check, timeout):
@@ -31,13 +35,13 @@ def run(text, np=1, check=True, cwd=None, timeout=300):
         path = os.path.join(d, "in.test")
         with open(path, "w") as f:
             f.write(text)
-        return _launch([LMP, "-in", path, "-log", "none", "-echo", "none"], d, np, check, timeout)
+        return _launch([lmp(), "-in", path, "-log", "none", "-echo", "none"], d, np, check, timeout)
 
 
 def run_file(path, variables=None, np=1, check=True, timeout=300):
     """Run an input file with -var NAME VALUE for each item of variables, in a scratch
     folder; returns (returncode, stdout+stderr)."""
-    cmd = [LMP, "-in", os.path.abspath(path), "-log", "none"]
+    cmd = [lmp(), "-in", os.path.abspath(path), "-log", "none"]
     for name, value in (variables or {}).items():
         cmd += ["-var", name, str(value)]
     with tempfile.TemporaryDirectory() as d:

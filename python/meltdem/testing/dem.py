@@ -1,12 +1,6 @@
 """Helpers of the fix powder/dt and compute powder/overlap tests: run meltdem-lmp, read
 thermo, and eq. 3.1 evaluated independently of the C++ code."""
 import math
-import os
-import sys
-
-sys.path.insert(0, os.path.join(os.environ["MELTDEM_SOURCE_DIR"], "tests", "support"))
-from meltdem_report import check_absolute, check_at_most, check_relative, report  # noqa: E402,F401
-from lammps_run import LMP, check_errors, run, thermo_runs  # noqa: E402,F401
 
 
 E, NU, RHO = 200e9, 0.3, 7900.0

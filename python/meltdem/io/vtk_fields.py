@@ -36,7 +36,8 @@ def time_dirs(folder):
 
 
 def processor_dirs(case):
-    return sorted(glob.glob(os.path.join(case, "processor[0-9]*")), key=lambda p: int(re.sub(r"\D", "", os.path.basename(p))))
+    return sorted(glob.glob(os.path.join(case, "processor[0-9]*")),
+                  key=lambda p: int(re.sub(r"\D", "", os.path.basename(p))))
 
 
 def layout(case):

@@ -5,6 +5,7 @@ import sys
 
 from . import check as chk
 from . import examples as ex
+from . import run as run_mod
 from .examples import StepError
 
 USAGE = """examples:
@@ -24,6 +25,8 @@ def cmd_list(a):
     print(f"{'example':<{w}}  {'kind':<14}  {'CI run time':<28}  title")
     for r in rows:
         print(f"{r['name']:<{w}}  {ex.KINDS[r['kind']]:<14}  {(r['ci_time'] or '-'):<28}  {r['title']}")
+        if r["full_time"]:
+            print(f"{'':<{w}}  {'':<14}  full size: {r['full_time']}")
     print(f"\n{len(rows)} examples in {ex.examples_dir()}; run one with: meltdem run <example> [--np N]")
     return 0
 
@@ -34,17 +37,15 @@ def cmd_check(a):
 
 
 def cmd_run(a):
-    from . import run
-    return run.run(a.target, case=a.case, np_=a.np, resume=a.resume, size="full" if a.full else "ci",
-                   check_first=not a.no_check, analyse=not a.no_analyse, checkpoint_every=a.checkpoint_every)
+    return run_mod.run(a.target, case=a.case, np_=a.np, resume=a.resume, size="full" if a.full else "ci",
+                       check_first=not a.no_check, analyse=not a.no_analyse, checkpoint_every=a.checkpoint_every)
 
 
 def cmd_post(a):
-    from . import run
     case = os.path.abspath(a.case)
     if not os.path.isdir(case):
         raise StepError(f"no case folder {case}")
-    s = run.postprocess(case, example=a.example)
+    s = run_mod.postprocess(case, example=a.example)
     if s is None:
         return 1
     for f in ("summary.md", "summary.json"):
@@ -66,7 +67,7 @@ def parser():
     p.add_argument("case")
     p.set_defaults(func=cmd_check)
     p = sub.add_parser("run", help="build (example) or take (case folder), check, mesh, decompose, run, post-process",
-                       description=__import__("meltdem_cli.run", fromlist=["x"]).__doc__,
+                       description=run_mod.__doc__,
                        formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("target", help="an example name (meltdem list) or a case folder")
     p.add_argument("--np", type=int, default=1, help="MPI ranks (default 1)")
@@ -74,9 +75,10 @@ def parser():
     p.add_argument("--case", help="case folder of an example (default ./<example>)")
     size = p.add_mutually_exclusive_group()
     size.add_argument("--ci", action="store_true", help="the example's CI size, minutes (default)")
-    size.add_argument("--full", action="store_true", help="the example's full (paper/thesis) size; see its README for the time")
+    size.add_argument("--full", action="store_true",
+                      help="the example's full (paper/thesis) size; meltdem list gives its run time")
     p.add_argument("--no-check", action="store_true", help="skip meltdem check before the launch")
-    p.add_argument("--no-analyse", action="store_true", help="skip the example's scene.py analyse")
+    p.add_argument("--no-analyse", action="store_true", help="skip the example's analysis (its scene's analyse step)")
     p.add_argument("--checkpoint-every", type=int, default=None, metavar="N",
                    help="DEM-only cases: a checkpoint every N steps (default 10000)")
     p.set_defaults(func=cmd_run)

@@ -1,15 +1,13 @@
 """Writer for the coupled (meltdemFoam + LAMMPS) test cases: a 3D box mesh of hexahedra
 (blockMesh), uniform initial fields, the LAMMPS input of the particles, and the runners
-(serial, or decomposed with mpirun -np N). The 2D writers of tests/support/foamcase.py do
+(serial, or decomposed with mpirun -np N). The 2D writers of meltdem.case.foam do
 the dictionaries they share."""
 import os
 import re
-import sys
 
 import numpy as np
 
-sys.path.insert(0, os.path.join(os.environ["MELTDEM_SOURCE_DIR"], "tests", "support"))
-import foamcase as fc  # noqa: E402
+from meltdem.case import foam as fc
 
 FACES = {"xmin": "(0 4 7 3)", "xmax": "(1 2 6 5)", "ymin": "(0 1 5 4)", "ymax": "(3 7 6 2)",
          "zmin": "(0 3 2 1)", "zmax": "(4 5 6 7)"}
@@ -81,7 +79,7 @@ def particles_csv(case):
     return d.reshape(1) if d.ndim == 0 else d
 
 
-# Thesis 2.3 channel (tables 2.1-2.3): hot artificial argon flowing down a square channel.
+# Codina2019 §2.3 channel (tables 2.1-2.3): hot artificial argon flowing down a square channel.
 GAS = dict(rho=1.6115, cp=5210.928, k=100.0, mu=2.1e-5, T=1500.0)
 CHANNEL = dict(lx=2.1e-3, ly=18.2e-3, lz=2.1e-3, h=0.7e-3, u=-2.0)
 
@@ -224,9 +222,9 @@ def track(log):
 
 
 def check_balances(test, ledger_rows, mass=1e-13, energy=1e-6, momentum=None, xfail=None, momentum_xfail=None):
-    """The worst per-step continuum errors of a ledger (thesis eq. 2.20, 2.26, 2.36) against
+    """The worst per-step continuum errors of a ledger (Codina2019 eq. 2.20, 2.26, 2.36) against
     their bounds (momentum only when given); returns whether all held."""
-    from meltdem_report import check_at_most
+    from meltdem.testing.report import check_at_most
     steps = ledger_rows[1:]  # the first step has no previous one
     ok = check_at_most(test, "worst per-step continuum mass error (eq. 2.20)",
                        np.max(np.abs(steps["mass_continuum_error"])), mass, xfail=xfail)

@@ -3,24 +3,24 @@
 Only what the case has: the ledger's melted mass, balance errors and powder feed (coupled runs),
 the absorbed laser energy (meltdemBalance + particles.csv), the simulated and wall time, the
 particles (ejected: centre above the initial bed top and moving up, in any frame), the packing
-fraction of a DEM bed (examples/powder-bed/bed_stats.py on the last frame), the bead of a track.
+fraction of a DEM bed (meltdem.analysis.beds on the last frame), the bead of a track.
 Where the example's own analysis (scene.py analyse / pbf.summary, which write CASE/summary.json
 themselves) has a number, that number is taken as it is and its key named as the source; it is
 run first when the example is known and its summary is missing. The scene's keys stay in
 summary.json beside the common ones (a later post-processing keeps them)."""
 import contextlib
 import glob
-import importlib.util
 import io
 import json
 import math
 import os
 import re
-import sys
 
 import numpy as np
 
-from . import casedata, vtk_particles
+from .. import scene
+from ..analysis import beds, profiles
+from ..io import dumps, vtk_particles
 
 MARK = "meltdem_post"
 FAST = 1.0   # m/s: a grain this fast in any frame counts as thrown (spatter), whatever its direction
@@ -38,58 +38,28 @@ SCENE_KEYS = {
     "particles_ejected": (("particles_ejected", 1), ("grains_ejected", 1)),
 }
 
-# example -> (module file in examples/<name>/, function, kwargs): the scene's own analysis
-SCENE_ANALYSIS = {
-    "pbf-point": ("pbf.py", "summary", {}), "pbf-line": ("../pbf-point/pbf.py", "summary", {}),
-    "slm-track": ("scene.py", "analyse", {}), "lmd-track": ("scene.py", "analyse", {"quiet": True}),
-    "powder-bed": ("scene.py", "analyse", {}),
-}
-
-
-def source_dir():
-    return os.environ.get("MELTDEM_SOURCE_DIR") or os.path.abspath(
-        os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))
-
 
 def detect_example(case):
-    """The example a case was built from, from the files its scene writer leaves (or None)."""
-    p = os.path.join(case, "pbf.json")
-    if os.path.exists(p):
-        v = json.load(open(p)).get("variant", "")
-        return "pbf-line" if v.startswith("line") else "pbf-point"
+    """The scene a case was built from: the name its build wrote into CASE/scene.json (or None)."""
     p = os.path.join(case, "scene.json")
-    if os.path.exists(p):
-        m = json.load(open(p))
-        if isinstance(m.get("scene"), str):
-            return m["scene"]
-        if "laser_x0_m" in m:
-            return "slm-track"
-        if "x_start" in m and "x_end" in m:
-            return "lmd-track"
-    return None
-
-
-def _load(path, name):
-    spec = importlib.util.spec_from_file_location(name, path)
-    mod = importlib.util.module_from_spec(spec)
-    sys.path.insert(0, os.path.dirname(path))
+    if not os.path.exists(p):
+        return None
     try:
-        spec.loader.exec_module(mod)
-    finally:
-        sys.path.remove(os.path.dirname(path))
-    return mod
+        m = json.load(open(p))
+    except (OSError, ValueError):
+        return None
+    name = m.get("scene") if isinstance(m, dict) else None
+    return name if isinstance(name, str) and name in scene.names() else None
 
 
 def run_scene_analysis(case, example):
-    """Run the example's own analysis (it writes CASE/summary.json); returns an error text or None."""
-    if example not in SCENE_ANALYSIS:
-        return None
-    rel, fn, kw = SCENE_ANALYSIS[example]
-    path = os.path.normpath(os.path.join(source_dir(), "examples", example, rel))
+    """Run the scene's own summary analysis (it writes CASE/summary.json); returns an error text or None."""
     try:
-        mod = _load(path, f"meltdem_scene_{example.replace('-', '_')}")
+        fn = scene.get(example).summary
+        if fn is None:
+            return None
         with contextlib.redirect_stdout(io.StringIO()):
-            getattr(mod, fn)(case, **kw)
+            fn(case)
     except Exception as e:  # the scene's analysis needs a complete run; report, keep going
         return f"{example} analysis: {type(e).__name__}: {str(e)[:200]}"
     return None
@@ -150,10 +120,10 @@ def particle_stats(case, series):
     if not paths:
         return {}, None
     if kind == "series":
-        frames = [f[-1] for f in (vtk_particles.read_frames(p) for p in paths) if f]
+        frames = [f[-1] for f in (dumps.read_frames(p) for p in paths) if f]
     else:
         src = series[0]["source"] if series else paths[0]
-        frames = vtk_particles.read_frames(os.path.join(case, src))
+        frames = dumps.read_frames(os.path.join(case, src))
     if not frames:
         return {}, None
     out = {"particles_first_frame": int(len(frames[0]["data"])), "particles_last_frame": int(len(frames[-1]["data"])),
@@ -194,7 +164,7 @@ def particle_stats(case, series):
 
 
 def packing(case, frames):
-    """Packing fraction of a DEM bed (no mesh): bed_stats of examples/powder-bed on the last frame,
+    """Packing fraction of a DEM bed (no mesh): meltdem.analysis.beds.bed_stats on the last frame,
     the floor the box's lower bound against gravity."""
     g = gravity_axis(case)
     if g is None or not frames or g[1] > 0:
@@ -202,7 +172,6 @@ def packing(case, frames):
     fr = frames[-1]
     if not all(c in fr["columns"] for c in ("x", "y", "z", "radius")):
         return None
-    bs = _load(os.path.join(source_dir(), "examples", "powder-bed", "bed_stats.py"), "meltdem_bed_stats")
     tmp = os.path.join(case, "VTK", ".last_frame.dump")
     with open(tmp, "w") as f:
         n = len(fr["data"])
@@ -213,7 +182,7 @@ def packing(case, frames):
         np.savetxt(f, fr["data"], fmt="%.17g")
     try:
         walls = not re.search(r"^\s*boundary\s+p\s+p", vtk_particles.lammps_inputs(case), re.M)
-        s = bs.bed_stats(tmp, up="xyz"[g[0]], walls=walls)
+        s = beds.bed_stats(tmp, up="xyz"[g[0]], walls=walls)
     finally:
         os.remove(tmp)
     return {"packing_fraction": float(s["packing_layer"]), "bed_thickness_m": float(s["thickness"]),
@@ -260,8 +229,8 @@ def momentum_unbooked(case):
     """Why the ledger's momentum balance does not close by construction (impulses it does not book:
     gravity on the particles, walls, the solid-metal contact, force fixes, the continuum's Darcy,
     surface, recoil and buoyancy forces); [] when it books every impulse."""
-    from .lammps_input import LammpsInput
-    from . import foamdict as fd
+    from ..io.lammps_input import LammpsInput
+    from ..io import foamdict as fd
     why = []
     ins = sorted(glob.glob(os.path.join(case, "in.*")))
     for p in ins:
@@ -329,30 +298,6 @@ def fused_max(fields_series):
     return out
 
 
-def _crossing(f, c, level):
-    """(low, high) where the profile f over the sorted centres c crosses level, outermost on
-    each side of its maximum's connected run (linear interpolation; the outer face when the run
-    reaches the end); None when f stays below level."""
-    i = int(np.argmax(f))
-    if f[i] < level:
-        return None
-    lo = i
-    while lo > 0 and f[lo - 1] >= level:
-        lo -= 1
-    hi = i
-    while hi < len(f) - 1 and f[hi + 1] >= level:
-        hi += 1
-    if lo == 0:
-        left = c[0] - ((c[1] - c[0]) / 2 if len(c) > 1 else 0.0)
-    else:
-        left = c[lo - 1] + (level - f[lo - 1]) / (f[lo] - f[lo - 1]) * (c[lo] - c[lo - 1])
-    if hi == len(f) - 1:
-        right = c[-1] + ((c[-1] - c[-2]) / 2 if len(c) > 1 else 0.0)
-    else:
-        right = c[hi] + (f[hi] - level) / (f[hi] - f[hi + 1]) * (c[hi + 1] - c[hi])
-    return float(left), float(right)
-
-
 def bead_geometry(fields_series, trk):
     """Bead of a moving laser from the written fields, on the cross-section at the middle of the
     track: fused = liquid fraction reached 1/2 while metal at some written time (its 1/2
@@ -393,11 +338,11 @@ def bead_geometry(fields_series, trk):
     # cell at the section's edge counts to its outer face)
     width, low = 0.0, None
     for j in range(len(vv)):
-        cr = _crossing(L[j, :], uu, 0.5)
+        cr = profiles.level_span(L[j, :], uu, 0.5)
         if cr:
             width = max(width, cr[1] - cr[0])
     for i in range(len(uu)):
-        cr = _crossing(L[:, i], vv, 0.5)
+        cr = profiles.level_span(L[:, i], vv, 0.5)
         if cr:
             low = cr[0] if low is None else min(low, cr[0])
     out["bead_width_m"] = float(width)
@@ -411,13 +356,16 @@ LABELS = [
     ("wall_time_s", "wall time", "s"), ("fluid_steps", "fluid steps", ""),
     ("bead_width_m", "bead width", "m"), ("bead_height_m", "bead height", "m"),
     ("penetration_m", "penetration", "m"),
-    ("melt_pool_width_max_m", "melt pool width (largest)", "m"), ("melt_pool_depth_max_m", "melt pool depth (largest)", "m"), ("deposition_efficiency", "deposition efficiency", ""),
+    ("melt_pool_width_max_m", "melt pool width (largest)", "m"),
+    ("melt_pool_depth_max_m", "melt pool depth (largest)", "m"),
+    ("deposition_efficiency", "deposition efficiency", ""),
     ("powder_fed_kg", "powder fed", "kg"), ("powder_deposited_kg", "powder deposited", "kg"),
     ("packing_fraction", "packing fraction", ""), ("bed_thickness_m", "bed thickness", "m"),
     ("bed_rms_speed_m_per_s", "bed rms speed (settled: ~0)", "m/s"),
     ("particles_first_frame", "particles (first frame)", ""), ("particles_last_frame", "particles (last frame)", ""),
     ("particles_ejected", "particles ejected", ""),
-    (f"particles_faster_than_{FAST:g}_m_per_s", f"particles faster than {FAST:g} m/s (any frame)", ""), ("particle_speed_max_m_per_s", "largest particle speed", "m/s"),
+    (f"particles_faster_than_{FAST:g}_m_per_s", f"particles faster than {FAST:g} m/s (any frame)", ""),
+    ("particle_speed_max_m_per_s", "largest particle speed", "m/s"),
     ("melted_mass_kg", "metal handed from particles to continuum", "kg"),
     ("particle_molten_mass_kg", "molten particle mass (fix powder/melt)", "kg"),
     ("laser_energy_absorbed_J", "laser energy absorbed", "J"),

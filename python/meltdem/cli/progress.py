@@ -123,7 +123,8 @@ class LammpsProgress:
                 if self.step is not None and step > self.step:
                     self.steps += step - self.step
                 self.step = step
-                self.t = float(w[self.t_col]) if self.t_col is not None and len(w) > self.t_col else step * (self.dt or 0)
+                self.t = (float(w[self.t_col]) if self.t_col is not None and len(w) > self.t_col
+                          else step * (self.dt or 0))
                 if self.run_len and self.dt:
                     self.t_end = self.t0 + self.run_len * self.dt
             elif w[0] == "Loop":

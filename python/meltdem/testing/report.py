@@ -1,6 +1,6 @@
 """Python side of the validation report (see validation_report.h / report.sh).
 
-    from meltdem_report import check_relative, check_absolute, report
+    from meltdem.testing.report import check_relative, check_absolute, report
     ok = check_relative("dem.restitution", "e (prescribed 0.5)", measured, 0.5, 0.01)
 
 Each call prints 'VALIDATION test | what | measured | reference | tolerance | verdict'
@@ -17,7 +17,9 @@ def report(test, what, measured, reference, tolerance, ok, xfail=None):
         ok = True
     else:
         verdict = "PASS" if ok else "FAIL"
-    fmt = lambda v: f"{v:.10g}" if isinstance(v, float) else str(v)
+
+    def fmt(v):
+        return f"{v:.10g}" if isinstance(v, float) else str(v)
     print(f"VALIDATION {test} | {what} | measured {fmt(measured)} | reference {fmt(reference)}"
           f" | tolerance {tolerance} | {verdict}", flush=True)
     d = os.environ.get("MELTDEM_REPORT_DIR")

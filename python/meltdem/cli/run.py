@@ -1,9 +1,9 @@
 """`meltdem run`: one case from an example name or a case folder to its post-processed output.
 
-    example name -> scene.py build CASE --ci|--full (powder-pour: in.pour copied)
+    example name -> the scene's build (CASE, ci|full; meltdem.scene)
     check (stop on errors) -> mesh (blockMesh when system/blockMeshDict and no polyMesh)
     -> decompose (--np > 1) -> ONE job: [mpirun -np N] meltdemFoam [-parallel] | meltdem-lmp -in IN
-    -> reconstructPar (N > 1) -> scene.py analyse (examples) -> post-processing (meltdem_cli.post)
+    -> reconstructPar (N > 1) -> the scene's analyse (examples) -> post-processing (cli/post.py)
 
 --resume: coupled and continuum-only cases: the latest time T with CASE/meltdemRestart/T/complete
 and the OpenFOAM time folder (CASE/T or processor0/T); system/controlDict gets startFrom startTime;
@@ -21,10 +21,11 @@ import subprocess
 import sys
 import time
 
+from .. import paths
 from . import caselock
 from . import check as chk
 from . import examples as ex
-from . import foamdict as fd
+from ..io import foamdict as fd
 from .examples import StepError
 from .progress import FoamProgress, LammpsProgress, Reporter
 
@@ -36,11 +37,11 @@ def say(msg):
 
 
 def bin_dir():
-    return os.environ.get("MELTDEM_BIN") or os.path.join(ex.source_dir(), "build", "bin")
+    return paths.bin_dir()
 
 
 def env():
-    e = ex.scene_env()
+    e = paths.tool_env()
     e["MELTDEM_BIN"] = bin_dir()
     return e
 
@@ -59,7 +60,8 @@ def tool(cmd, case, log):
         r = subprocess.run(cmd, cwd=case, stdout=f, stderr=subprocess.STDOUT, env=dict(env(), PWD=case))
     if r.returncode != 0:
         why = failure_reason(case, log)
-        raise StepError(f"{cmd[0]} failed (rc {r.returncode}){': ' + why if why else ''}; read {os.path.join(case, log)}")
+        raise StepError(f"{cmd[0]} failed (rc {r.returncode}){': ' + why if why else ''}; "
+                        f"read {os.path.join(case, log)}")
 
 
 WALL_FILE = "wall_seconds"
@@ -194,7 +196,7 @@ def decompose(case, np_, mesh_box):
         # simple decomposition along the longest side of the mesh
         axis = 0
         if mesh_box:
-            span = [h - l for l, h in zip(*mesh_box)]
+            span = [high - low for low, high in zip(*mesh_box)]
             axis = span.index(max(span))
         split = [1, 1, 1]
         split[axis] = np_
@@ -391,7 +393,8 @@ def run_foam(case, np_, resume, rebuilt=False):
         why = failure_reason(case, "log.meltdemFoam")
         raise StepError(f"meltdemFoam failed (rc {rc}) at t = {tracker.t:g} s{': ' + why if why else ''}; read "
                         f"{os.path.join(case, 'log.meltdemFoam')}"
-                        + (f" (resume: meltdem run {case} --resume)" if os.path.isdir(os.path.join(case, RESTART_DIR)) else ""))
+                        + (f" (resume: meltdem run {case} --resume)" if os.path.isdir(os.path.join(case, RESTART_DIR))
+                           else ""))
     for w in solver_warnings(case, "log.meltdemFoam"):
         say(f"WARNING (log.meltdemFoam): {w}")
     say(f"meltdemFoam finished in {wall:.0f} s wall")
@@ -440,7 +443,7 @@ def run_dem(case, np_, resume, checkpoint_every=None):
         for f in os.listdir(case):
             if f.startswith(("log.", "out.")) and f.rsplit(".", 1)[-1].isdigit():
                 os.remove(os.path.join(case, f))
-    from .lammps_input import LammpsInput
+    from ..io.lammps_input import LammpsInput
     overrides = chk.scene_vars(case)
     lmp_in = LammpsInput(os.path.join(case, inp), overrides)
     lmp = os.path.join(bin_dir(), "meltdem-lmp")
@@ -463,7 +466,7 @@ def run_dem(case, np_, resume, checkpoint_every=None):
         + (f" (fix {halt[0][1][1]} halt ends it when its condition is met: the ETA is an upper bound)" if halt else "")
         + " (log.lammps)")
     rc, wall = launch(cmd, case, "out.lammps", LammpsProgress(os.path.join(case, "out.lammps"), lmp_in.timestep(),
-                                                                     runs),
+                                                              runs),
                       np_, wall_segments(case) if resume else [], "resumed" if resume else "run")
     if rc != 0:
         why = failure_reason(case, "log.lammps") or failure_reason(case, "out.lammps")
@@ -474,12 +477,12 @@ def run_dem(case, np_, resume, checkpoint_every=None):
     return wall
 
 
-# ------------------------------------------------------------------ scenes run by their scene.py
+# ------------------------------------------------------------- scenes with a run step of their own
 def run_scene(name, case, np_):
     """Examples whose built case is not one solver case (bjt-droplet: a bed, then one case per
-    impact speed) run through their scene.py run; the progress follows the newest solver log."""
+    impact speed) run through their scene's run step; the progress follows the newest solver log."""
     subs = sorted(d for d in os.listdir(case) if chk.case_kind(os.path.join(case, d)) == "foam")
-    say(f"{name} runs through its scene.py run (sub-cases {', '.join(subs) or 'none'}; log.run)")
+    say(f"{name} runs through its scene's run step (sub-cases {', '.join(subs) or 'none'}; log.run)")
     log = os.path.join(case, "log.run")
     p, f = ex.scene_run(name, case, np_, log)
     t0, current, rep = time.time(), None, None
@@ -513,7 +516,7 @@ def postprocess(case, example=None):
     try:
         from . import post
     except ImportError as e:
-        say(f"post-processing unavailable (meltdem_cli.post: {e})")
+        say(f"post-processing unavailable (meltdem.cli.post: {e})")
         return None
     say("post-processing (VTK series, plots, summary)")
     try:
@@ -565,14 +568,15 @@ def _run(name, target, case, lock, np_, resume, size, check_first, analyse, chec
         say("--full applies to example names only: the case folder runs as it is")
     t_start = time.time()
     kind = chk.case_kind(case)
-    if kind is None and name and os.path.isfile(os.path.join(ex.examples_dir(), name, "scene.py")):
+    if kind is None and name and ex.has_step(name, "run"):
         if resume:
-            raise StepError(f"--resume is not supported for {name} (it runs several sub-cases through its scene.py)")
+            raise StepError(f"--resume is not supported for {name} "
+                            "(it runs several sub-cases through its own run step)")
         _, subs = run_scene(name, case, np_)
         for s in subs:
             postprocess(os.path.join(case, s), example=name)
         if analyse:
-            say(f"analysing: {name}/scene.py analyse (log.analyse)")
+            say(f"analysing: {name}'s analyse step (log.analyse)")
             ex.analyse(name, case)
     else:
         if check_first:
@@ -588,8 +592,8 @@ def _run(name, target, case, lock, np_, resume, size, check_first, analyse, chec
             run_dem(case, np_, resume, checkpoint_every)
         # the scene's analysis first: post-processing then takes its numbers (bead, efficiency,
         # packing) from the summary.json it wrote instead of running the analysis a second time
-        if name and analyse and os.path.isfile(os.path.join(ex.examples_dir(), name, "scene.py")):
-            say(f"analysing: {name}/scene.py analyse (log.analyse)")
+        if name and analyse and ex.has_step(name, "analyse"):
+            say(f"analysing: {name}'s analyse step (log.analyse)")
             ex.analyse(name, case)
         postprocess(case, example=name)
     say(f"done in {time.time() - t_start:.0f} s: {case}")

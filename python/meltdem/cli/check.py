@@ -10,8 +10,9 @@ keywords) and the laser path inside the mesh (as laserHeatSource::checkInBounds 
 """
 import os
 
-from . import foamdict as fd
-from .lammps_input import LammpsInput
+from .. import paths
+from ..io import foamdict as fd
+from ..io.lammps_input import LammpsInput
 
 # entries the solver reads (foam-src/meltdemModels/*, foam-src/meltdemFoam)
 CONTROL = ("startTime", "endTime", "deltaT", "writeInterval")
@@ -188,8 +189,7 @@ def solver_terms():
     import subprocess
     if _SOLVER_TERMS:
         return _SOLVER_TERMS[0]
-    exe = os.path.join(os.environ.get("MELTDEM_BIN") or os.path.join(
-        os.environ.get("MELTDEM_SOURCE_DIR", ""), "build", "bin"), "meltdemFoam")
+    exe = paths.binary("meltdemFoam")
     try:
         env = dict(os.environ)
         env.setdefault("WM_PROJECT_DIR", "/usr/share/openfoam")
@@ -209,7 +209,8 @@ def mesh_box(case, rep):
         if b:
             return b, "constant/polyMesh/points"
     rel = "system/blockMeshDict"
-    if not os.path.isfile(os.path.join(case, rel)) and os.path.isdir(os.path.join(case, "processor0", "constant", "polyMesh")):
+    if (not os.path.isfile(os.path.join(case, rel))
+            and os.path.isdir(os.path.join(case, "processor0", "constant", "polyMesh"))):
         rep.note("decomposed mesh only (processor*/constant/polyMesh): mesh box not checked")
         return None, None
     d = _read(case, rel, rep, required=not os.path.isfile(pts))
@@ -233,7 +234,7 @@ def _fmt(b):
 
 def check_gravity(lmp, rel, g, rep):
     """The particles' fix gravity equals constant/g (meltdemFoam stops otherwise, checkGravity)."""
-    from .lammps_input import _eval
+    from ..io.lammps_input import _eval
     gl = [0.0, 0.0, 0.0]
     for n, w in lmp.fixes("gravity"):
         mag = _eval(w[4]) if len(w) > 4 else None
@@ -298,12 +299,13 @@ def check_lammps(case, rel, rep, mesh=None, coupled=False, overrides=None, g=Non
         if box is None:
             rep.note(f"{rel}: LAMMPS box not known before the run ({src}); domain check skipped")
         else:
-            span = max(h - l for l, h in zip(*mesh))
+            span = max(high - low for low, high in zip(*mesh))
             tol = 1e-9 * span
             out = [a for k, a in enumerate("xyz")
                    if mesh[0][k] < box[0][k] - tol or mesh[1][k] > box[1][k] + tol]
             if out:
-                rep.bad(rel, f"LAMMPS box {_fmt(box)} ({src}) does not contain the mesh box {_fmt(mesh)} in {','.join(out)}")
+                rep.bad(rel, f"LAMMPS box {_fmt(box)} ({src}) does not contain the mesh box {_fmt(mesh)} "
+                             f"in {','.join(out)}")
             else:
                 rep.ok(f"{rel}: LAMMPS box {_fmt(box)} contains the mesh {_fmt(mesh)}")
     if coupled and mesh is not None:
@@ -316,7 +318,7 @@ def check_lammps(case, rel, rep, mesh=None, coupled=False, overrides=None, g=Non
 def check_insertion_regions(lmp, rel, mesh, rep):
     """A fix powder/insert region (a block) outside the mesh: its grains would be booked lost the
     moment they are inserted (the coupling removes particles outside the mesh)."""
-    from .lammps_input import _eval
+    from ..io.lammps_input import _eval
     blocks = {w[1]: w[3:9] for _, w in lmp.find("region") if len(w) >= 9 and w[2] == "block"}
     for n, w in lmp.fixes("powder/insert"):
         rid = w[w.index("region") + 1] if "region" in w[4:-1] else None
@@ -352,7 +354,7 @@ def check_laser(d, mesh, rep, rel, entries):
     if mesh is None:
         return
     lo, hi = mesh
-    tol = 1e-9 * max(h - l for l, h in zip(lo, hi))
+    tol = 1e-9 * max(high - low for low, high in zip(lo, hi))
 
     def inside(p):
         return all(lo[k] - tol <= p[k] <= hi[k] + tol for k in range(3))
@@ -399,8 +401,8 @@ def field_values(path):
     if re.search(r"format\s+binary", text[:4096]):
         return "binary"
     vals = []
-    for m in re.finditer(r"\b(internalField|value)\s+(uniform\s+([^;]+);|nonuniform\s+List<scalar>\s*\d*\s*\(([^)]*)\))",
-                         text):
+    for m in re.finditer(r"\b(internalField|value)\s+"
+                         r"(uniform\s+([^;]+);|nonuniform\s+List<scalar>\s*\d*\s*\(([^)]*)\))", text):
         toks = (m.group(3) or m.group(4) or "").split()
         for t in toks:
             try:
@@ -588,7 +590,8 @@ def check(case):
         check_lammps(case, dem_input(case), rep, overrides=scene_vars(case))
     else:
         rep.bad(os.path.basename(case) or case,
-                "not a case: no system/controlDict (coupled or continuum case) and no in.* LAMMPS input (DEM-only case)")
+                "not a case: no system/controlDict (coupled or continuum case) and no in.* LAMMPS input "
+                "(DEM-only case)")
     return rep, kind
 
 

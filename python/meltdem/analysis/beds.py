@@ -1,10 +1,10 @@
 #!/usr/bin/python3
 """Bed thickness and packing fraction of a settled powder bed from a LAMMPS dump.
 
-    bed_stats.py bed.dump [--up y] [--walls] [--column 60e-6] [--profile FILE]
+    python3 -m meltdem.analysis.beds bed.dump [--up y] [--walls] [--column 60e-6] [--profile FILE]
 
 Reads the last snapshot of a custom dump with columns radius x y z (and vx vy vz, mass)
-and prints, with 'up' the vertical axis (y as in thesis table 4.3), floor at the box's
+and prints, with 'up' the vertical axis (y as in Codina2019 table 4.3), floor at the box's
 lower bound:
 
   solid fraction profile phi(y)  the solid area fraction of the horizontal plane at
@@ -19,7 +19,7 @@ lower bound:
                i.e. the mean level of the rough top surface. H and phi_b are found
                together by fixed-point iteration from the column-top thickness.
   packing      total sphere volume / (floor area x H) = solid layer / H: the packing
-               of the whole layer (the thesis's "compaction factor": it turns the bed
+               of the whole layer (Codina2019's "compaction factor": it turns the bed
                thickness into the solid thickness, 60 um x 0.5 = 30 um); compare with
                random poured packings (0.55-0.64).
   top thickness  mean over a grid of vertical columns (about 2 mean diameters wide,
@@ -32,17 +32,7 @@ import math
 
 import numpy as np
 
-
-def read_last_snapshot(path):
-    with open(path) as f:
-        lines = f.read().splitlines()
-    starts = [k for k, l in enumerate(lines) if l.startswith("ITEM: TIMESTEP")]
-    lines = lines[starts[-1]:]
-    n = int(lines[3])
-    box = np.array([[float(v) for v in lines[5 + k].split()[:2]] for k in range(3)])
-    cols = lines[8].split()[2:]
-    data = np.array([[float(v) for v in l.split()] for l in lines[9:9 + n]]).reshape(n, len(cols))
-    return box, {c: data[:, k] for k, c in enumerate(cols)}
+from ..io import dumps
 
 
 def slice_volume(y0, r, a, b):
@@ -81,7 +71,8 @@ def thickness_and_packing(y0, r, area, H0, dy=0.1e-6):
 
 
 def bed_stats(path, up="y", column=60e-6, walls=False):
-    box, a = read_last_snapshot(path)
+    last = dumps.read_frames(path)[-1]
+    box, a = last["box"], dumps.columns(last)
     axes = "xyz"
     iu = axes.index(up)
     h1, h2 = [k for k in range(3) if k != iu]
@@ -110,7 +101,8 @@ def bed_stats(path, up="y", column=60e-6, walls=False):
     speed = np.sqrt(a["vx"] ** 2 + a["vy"] ** 2 + a["vz"] ** 2) if "vx" in a else np.zeros(1)
     m = a["mass"] if "mass" in a else r ** 3
     rms = math.sqrt((m * speed ** 2).sum() / m.sum())
-    return {"particles": len(r), "thickness": Hh, "packing_layer": (4.0 / 3.0 * math.pi * r[inner] ** 3).sum() / (Ain * Hh), "packing_slab": phib,
+    return {"particles": len(r), "thickness": Hh,
+            "packing_layer": (4.0 / 3.0 * math.pi * r[inner] ** 3).sum() / (Ain * Hh), "packing_slab": phib,
             "top_thickness": H, "profile": (ys, phi),
             "solid_layer": V / A, "d_mean": 2 * r.mean(), "d_min": 2 * r.min(), "d_max": 2 * r.max(),
             "max_speed": speed.max(), "rms_speed": rms, "columns": n1 * n2, "empty_columns": int((tops == 0).sum())}

@@ -21,7 +21,9 @@ import time
 
 import numpy as np
 
-from . import casedata, plots, summary, vtk_fields, vtk_particles
+from . import plots, summary
+
+from ..io import casedata, vtk_fields, vtk_particles
 
 
 def _clean(v):
@@ -184,7 +186,7 @@ def postprocess(case_dir, example=None, fields=True, quiet=True):
         try:
             pk = summary.packing(case, frames)
             if pk:
-                _put(s, sources, pk, "examples/powder-bed/bed_stats.py on the last frame")
+                _put(s, sources, pk, "meltdem.analysis.beds on the last frame")
         except Exception as e:
             notes.append(f"packing: {type(e).__name__}: {e}")
     if trk is not None and fields_series:
@@ -234,6 +236,5 @@ def main(argv=None):
     return 0
 
 
-if __name__ == "__main__":
-    sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+if __name__ == "__main__":   # python3 -m meltdem.cli.post CASE
     sys.exit(main())

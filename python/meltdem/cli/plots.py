@@ -1,8 +1,6 @@
 """PNG plots of a run (matplotlib, Agg): balances, melted mass, absorbed laser power and, for a
 moving laser, the bead cross-section. Each function returns the path written, or None when the
 case has nothing to plot for it."""
-import os
-
 import matplotlib
 
 matplotlib.use("Agg")

@@ -1,0 +1,1 @@
+"""Case writers: OpenFOAM dictionaries, fields and meshes (foam), coupled cases (coupled)."""
