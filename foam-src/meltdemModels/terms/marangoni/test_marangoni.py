@@ -1,0 +1,40 @@
+#!/usr/bin/env python3
+"""The marangoni term on fixed fields (meltdemTermCheck): a plane metal surface (alpha ramping from
+1 to 0 over 4 cells) with T rising linearly along it. Its momentum force density is the tangential
+Marangoni force (I - n n) & grad(sigma(T)) |grad alpha| of Fuchs2022 eq. 8: on every interior column
+its integral across the surface is dsigma/dT dT/dx exactly (the Gauss gradient of alpha
+telescopes to 1), pointing from hot to cold for dsigma/dT < 0, with no normal component; it acts
+through addMomentum only."""
+import os
+import sys
+import tempfile
+
+import numpy as np
+
+from meltdem.case import foam as fc
+from meltdem.testing import terms
+from meltdem.testing.report import check_at_most
+
+TEST = "foam.term.marangoni"
+ST = dict(sigma0=1.8, dSigmadT=-4.3e-4, Tsigma0=1700.0, sigmaMin=0.2)
+GRAD_T = 4.0e5          # K/m: 1500-1900 K over the 1 mm, sigma above sigmaMin everywhere
+NX, NY = 20, 16
+grid = fc.Grid2D(1e-3, 0.8e-3, NX, NY)
+row_alpha = np.clip((9.5 - np.arange(NY)) / 4.0, 0.0, 1.0)
+alpha = np.repeat(row_alpha, NX)
+T = ST["Tsigma0"] + GRAD_T * (grid.x - 0.5e-3)
+props = ("physics { energy on; flow on; surfaceTension on; marangoni on; }\nsurfaceTension\n{\n"
+         + "".join(f"    {k} {v!r};\n" for k, v in ST.items()) + "}\n")
+
+work = tempfile.mkdtemp(prefix="term_marangoni_")
+hooks, out = terms.evaluate(os.path.join(work, "case"), "marangoni", grid, {"alpha.metal": alpha, "T": T}, props)
+ok = terms.check_hooks(TEST, hooks, ["addMomentum"])
+F = out["termMomentum"]
+Fx = F[:, 0].reshape(NY, NX)[:, 1:-1]        # interior columns: grad T there is exact
+column = Fx.sum(axis=0) * grid.dy
+expected = ST["dSigmadT"] * GRAD_T
+ok &= check_at_most(TEST, f"column integral of F_x [N/m2] vs dsigma/dT dT/dx = {expected:g}, max deviation / |ref|",
+                    float(np.max(np.abs(column - expected)) / abs(expected)), 1e-9)
+ok &= check_at_most(TEST, "normal (y) share of the force, max |F_y| / max |F_x|",
+                    float(np.max(np.abs(F[:, 1])) / np.max(np.abs(F[:, 0]))), 1e-9)
+sys.exit(fc.finish(ok, work))
