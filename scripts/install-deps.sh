@@ -30,6 +30,7 @@ PACKAGES=(
   "openfoam=$OPENFOAM_BIN_VERSION" "libopenfoam=$OPENFOAM_BIN_VERSION"
   openmpi-bin libopenmpi-dev libeigen3-dev googletest libgtest-dev
   cmake g++ make dpkg-dev xz-utils bzip2 python3 python3-numpy python3-scipy python3-matplotlib
+  flake8 clang-format
 )
 
 # OpenFOAM library folders whose lnInclude the project compiles against
