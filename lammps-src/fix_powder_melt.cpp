@@ -298,18 +298,21 @@ bigint FixPowderMelt::delete_local(const std::function<bool(int)> &doomed)
 }
 
 /* ----------------------------------------------------------------------
-   the fluid parcel a particle drags over a coupling interval starts at the sampled
-   velocity and then moves with the drag reaction (two-body drag)
+   the fluid parcel a particle exchanges momentum and heat with over a coupling interval
+   starts at the sampled velocity and temperature, then moves with the drag reaction and
+   the heat the particle takes (two bodies)
 ------------------------------------------------------------------------- */
 
-void FixPowderMelt::parcel_velocity(int i, mc::FluidState &fluid)
+void FixPowderMelt::parcel_state(int i, mc::FluidState &fluid)
 {
-  if (!(fluid.mass > 0.0)) return;
   if (melt[i][P_SET] == 0.0) {
     for (int k = 0; k < 3; k++) melt[i][P_UX + k] = fluid.U[k];
+    melt[i][P_T] = fluid.T;
     melt[i][P_SET] = 1.0;
   }
-  for (int k = 0; k < 3; k++) fluid.U[k] = melt[i][P_UX + k];
+  if (fluid.mass > 0.0)
+    for (int k = 0; k < 3; k++) fluid.U[k] = melt[i][P_UX + k];
+  if (fluid.capacity > 0.0) fluid.T = melt[i][P_T];
 }
 
 /* ----------------------------------------------------------------------
@@ -341,7 +344,7 @@ void FixPowderMelt::post_force(int /*vflag*/)
   for (int i = 0; i < nlocal; i++) {
     if (!(mask[i] & groupbit) || melt[i][MOLTEN] != 0.0) continue;
     if (!provider->fluid_state(i, x[i], fluid)) continue;
-    parcel_velocity(i, fluid);
+    parcel_state(i, fluid);
     mc::ParticleForces F;
     try {
       F = mc::drag_and_buoyancy(drag_model, fluid, v[i], 2.0 * radius[i], g);
@@ -409,7 +412,7 @@ void FixPowderMelt::end_of_step()
     if (!(mask[i] & groupbit) || melt[i][MOLTEN] != 0.0) continue;
     if (melt[i][MASS0] <= 0.0) melt[i][MASS0] = rmass[i];  // inserted during the run
     if (!provider->fluid_state(i, x[i], fluid)) continue;
-    parcel_velocity(i, fluid);
+    parcel_state(i, fluid);
 
     const double d = 2.0 * radius[i], m = rmass[i];
     mc::MeltStepResult r;
@@ -427,7 +430,9 @@ void FixPowderMelt::end_of_step()
         r.heat = 0.0;
       } else {
         const double Re = mc::slip_reynolds(fluid, v[i], lit.d);
-        r = mc::heat_melt_step(mat, lit.h, lit.m, lit.d, mc::ranz_marshall_k_nu(fluid, Re), fluid.T, dt);
+        r = mc::heat_melt_step_two_body(mat, lit.h, lit.m, lit.d, mc::ranz_marshall_k_nu(fluid, Re), fluid.T,
+                                        fluid.capacity, dt);
+        if (fluid.capacity > 0.0) melt[i][P_T] = r.T_fluid;
         r.mass_melted += lit.mass_melted;
         r.enthalpy_out += lit.enthalpy_out;
       }
@@ -595,8 +600,10 @@ void FixPowderMelt::unpack_restart(int nlocal, int nth)
   double **extra = atom->extra;
   int m = 0;
   for (int i = 0; i < nth; i++) m += static_cast<int>(extra[nlocal][m]);
+  // restarts of earlier versions hold fewer (interval scratch) columns: those start at 0
+  const int stored = std::min(static_cast<int>(extra[nlocal][m]) - 1, static_cast<int>(NCOL));
   m++;
-  for (int k = 0; k < NCOL; k++) melt[nlocal][k] = extra[nlocal][m++];
+  for (int k = 0; k < NCOL; k++) melt[nlocal][k] = k < stored ? extra[nlocal][m++] : 0.0;
 }
 
 int FixPowderMelt::size_restart(int /*nlocal*/)

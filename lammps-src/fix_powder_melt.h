@@ -93,8 +93,9 @@ class FixPowderMelt : public Fix {
   // per-atom columns; dumps see TEMP and FRAC. MOLTEN = 1: fully molten, booked, removed
   // at the next step's pre_exchange. I_* accumulate over the coupling interval: molten
   // mass, enthalpy and momentum handed over, heat absorbed, drag impulse, laser energy
-  // P_*: the velocity of the fluid parcel the particle drags over the coupling interval
-  // (two-body drag; P_SET 0: not yet taken from the fluid this interval). S_*: the
+  // P_*: the velocity and temperature of the fluid parcel the particle exchanges momentum
+  // and heat with over the coupling interval (two bodies; P_SET 0: not yet taken from the
+  // fluid this interval). S_*: the
   // particle's memory of its solid-metal contact (mc::SolidContactMemory), kept across
   // intervals
   enum {
@@ -125,6 +126,7 @@ class FixPowderMelt : public Fix {
     P_UY,
     P_UZ,
     P_SET,
+    P_T,
     NCOL
   };
   std::vector<meltdem::coupling::ExchangeRecord> finished;  // deleted this interval
@@ -153,7 +155,7 @@ class FixPowderMelt : public Fix {
   void refresh_output(int i);
   // the fluid velocity the particle drags: its parcel's (taken from fluid at the first
   // use in a coupling interval) when the fluid has a parcel mass
-  void parcel_velocity(int i, meltdem::coupling::FluidState &fluid);
+  void parcel_state(int i, meltdem::coupling::FluidState &fluid);
   int delete_molten();
   bigint delete_local(const std::function<bool(int)> &doomed);
 };

@@ -14,11 +14,6 @@ namespace meltdem::coupling {
 
 namespace {
 
-double particle_volume(double radius)
-{
-  return 4.0 / 3.0 * M_PI * radius * radius * radius;
-}
-
 // Gather `per` doubles per item from every rank, in rank order.
 void allgather_doubles(const std::vector<double> &local, int per, MPI_Comm comm, std::vector<double> &all,
                        std::vector<int> &counts, std::vector<int> &displs)
@@ -35,35 +30,6 @@ void allgather_doubles(const std::vector<double> &local, int per, MPI_Comm comm,
   for (int r = 0; r < size; ++r) c[r] = counts[r] * per, d[r] = displs[r] * per;
   all.assign(std::size_t(total) * per, 0.0);
   MPI_Allgatherv(local.data(), n * per, MPI_DOUBLE, all.data(), c.data(), d.data(), MPI_DOUBLE, comm);
-}
-
-// Does box [lo, hi] share a face with box [hlo, hhi]? Then axis/plane of that face.
-bool shares_face(const Eigen::Vector3d &lo, const Eigen::Vector3d &hi, const Eigen::Vector3d &hlo,
-                 const Eigen::Vector3d &hhi, int &axis, double &plane, double &outward)
-{
-  const double tol = 1e-9 * (hhi - hlo).maxCoeff();
-  int touching = -1, overlapping = 0;
-  for (int a = 0; a < 3; ++a) {
-    const double ov = std::min(hi[a], hhi[a]) - std::max(lo[a], hlo[a]);
-    if (ov > tol) {
-      ++overlapping;
-    } else if (std::abs(ov) <= tol) {
-      if (touching >= 0) return false;  // an edge or a corner, not a face
-      touching = a;
-    } else {
-      return false;
-    }
-  }
-  if (overlapping != 2 || touching < 0) return false;
-  axis = touching;
-  if (std::abs(lo[axis] - hhi[axis]) <= tol) {
-    plane = hhi[axis];
-    outward = 1.0;
-  } else {
-    plane = hlo[axis];
-    outward = -1.0;
-  }
-  return true;
 }
 
 }  // namespace
@@ -122,42 +88,18 @@ void ParallelExchange::locate(const std::vector<ParticleShape> &local)
   start_.assign(n + 1, 0);
   cells_.clear();
   weights_.clear();
-  std::vector<long> candidates;
-  std::vector<CellWeight> overlap;
+  std::vector<CellWeight> raw;
+  Eigen::Vector3d hlo = Eigen::Vector3d::Zero(), hhi = Eigen::Vector3d::Zero();
   for (std::size_t g = 0; g < n; ++g) {
     start_[g] = cells_.size();
     if (owner[g] == INT_MAX) continue;  // outside the mesh
-    const Eigen::Vector3d &c = all_[g].x;
-    const double r = all_[g].radius;
-    switch (model_) {
-      case DistributionModel::Centre:
-        if (home[g] >= 0) cells_.push_back(home[g]), weights_.push_back(1.0);
-        break;
-      case DistributionModel::Neighbours: {
-        const Eigen::Vector3d hlo(-hbox[6 * g], -hbox[6 * g + 1], -hbox[6 * g + 2]);
-        const Eigen::Vector3d hhi(hbox[6 * g + 3], hbox[6 * g + 4], hbox[6 * g + 5]);
-        if (home[g] >= 0) cells_.push_back(home[g]), weights_.push_back(mesh_.cell_volume(home[g]));
-        candidates.clear();
-        mesh_.cells_in_sphere(c, r, candidates);
-        Eigen::Vector3d lo, hi;
-        for (long cell : candidates) {
-          if (cell == home[g]) continue;
-          mesh_.cell_bounds(cell, lo, hi);
-          int axis;
-          double plane, outward;
-          // Codina2019 fig. 3.9: reached when c + r n lies beyond the shared face
-          if (shares_face(lo, hi, hlo, hhi, axis, plane, outward) && (c[axis] - plane) * outward + r > 0.0)
-            cells_.push_back(cell), weights_.push_back(mesh_.cell_volume(cell));
-        }
-        break;
-      }
-      case DistributionModel::Overlap: {
-        overlap.clear();
-        append_overlap_volumes(mesh_, c, r, overlap);
-        for (const CellWeight &w : overlap) cells_.push_back(w.cell), weights_.push_back(w.weight);
-        break;
-      }
+    if (!hbox.empty()) {
+      hlo = Eigen::Vector3d(-hbox[6 * g], -hbox[6 * g + 1], -hbox[6 * g + 2]);
+      hhi = Eigen::Vector3d(hbox[6 * g + 3], hbox[6 * g + 4], hbox[6 * g + 5]);
     }
+    raw.clear();
+    append_raw_weights(mesh_, model_, all_[g].x, all_[g].radius, home[g], hlo, hhi, raw);
+    for (const CellWeight &w : raw) cells_.push_back(w.cell), weights_.push_back(w.weight);
   }
   start_[n] = cells_.size();
 
@@ -179,6 +121,19 @@ void ParallelExchange::locate(const std::vector<ParticleShape> &local)
     inside_[g] = 1;
     for (std::size_t k = start_[g]; k < start_[g + 1]; ++k) weights_[k] /= total;
   }
+
+  // each particle's share of its cells, by its conductance there: its weight in the cell times
+  // its size (G ~ k Nu d), so a shrinking remnant keeps enough of a cell to melt away (every
+  // rank holds every particle's weights over its own cells, so the per-cell sums are complete)
+  share_.assign(cells_.size(), 0.0);
+  std::unordered_map<long, double> claimed;
+  for (std::size_t g = 0; g < n; ++g)
+    for (std::size_t k = start_[g]; k < start_[g + 1]; ++k) {
+      share_[k] = weights_[k] * all_[g].radius;
+      claimed[cells_[k]] += share_[k];
+    }
+  for (std::size_t k = 0; k < cells_.size(); ++k)
+    if (share_[k] > 0.0) share_[k] /= claimed[cells_[k]];
 }
 
 void ParallelExchange::sample_global(const CellFluidFields &f, std::vector<SampledFluid> &out) const
@@ -190,7 +145,7 @@ void ParallelExchange::sample_global(const CellFluidFields &f, std::vector<Sampl
   std::vector<double> partial(kSampleSums * n, 0.0);
   for (std::size_t g = 0; g < n; ++g)
     for (std::size_t k = start_[g]; k < start_[g + 1]; ++k)
-      add_cell_to_sample(f, cells_[k], weights_[k], &partial[kSampleSums * g]);
+      add_cell_to_sample(f, cells_[k], weights_[k], share_[k], &partial[kSampleSums * g]);
   if (n) MPI_Allreduce(MPI_IN_PLACE, partial.data(), int(kSampleSums * n), MPI_DOUBLE, MPI_SUM, comm_);
   out.assign(n, SampledFluid());
   for (std::size_t g = 0; g < n; ++g)
@@ -252,36 +207,25 @@ void ParallelExchange::deposit_taken(const std::vector<std::int64_t> &ids, const
     if (it == entry.end()) continue;
     for (int q = 0; q < kOut; ++q) all[kOut * g + q] = gathered[kIn * it->second + 1 + q];
   }
-  // the heat a cell can give particle g before it reaches the particle's temperature:
-  // g's claim on the cell's capacity (its part of the particle volume the cell holds; all
-  // of it for a particle alone in the cell) times the cell's temperature difference to the
-  // particle, in the direction g took heat
-  std::vector<double> held(cells_.size(), 0.0);  // per weight: the particle volume in its cell
-  std::vector<double> claimed;                   // per cell: that volume summed over particles
+  // the heat a cell can give particle g before it reaches the particle's temperature: g's
+  // share of the cell's capacity times the cell's temperature difference to the particle, in
+  // the direction g took heat (the parcel g exchanged heat with is the sum of these shares)
   std::vector<double> available(cells_.size(), 0.0);
-  if (f.volume) {
-    claimed.assign(cell_amounts.size(), 0.0);
-    for (std::size_t g = 0; g < n; ++g)
-      for (std::size_t k = start_[g]; k < start_[g + 1]; ++k) {
-        held[k] = weights_[k] * particle_volume(all_[g].radius);
-        claimed.at(std::size_t(cells_[k])) += held[k];
-      }
+  if (f.volume)
     for (std::size_t g = 0; g < n; ++g)
       for (std::size_t k = start_[g]; k < start_[g + 1]; ++k) {
         const long c = cells_[k];
-        const double capacity = held[k] / claimed[std::size_t(c)] * f.rho[c] * f.cp[c] * f.volume[c];
+        const double capacity = share_[k] * f.rho[c] * f.cp[c] * f.volume[c];
         const double *a = &all[kOut * g];
         const double dT = a[0] >= 0.0 ? f.T[c] - a[4] : a[4] - f.T[c];
         available[k] = capacity * std::max(dT, 0.0);
       }
-  }
-  // per particle over every rank's cells: capacity sum w rho cp, mass sum w rho, available heat
+  // per particle over every rank's cells: the parcel's capacity and mass, the available heat
   std::vector<double> sums(3 * n, 0.0);
   for (std::size_t g = 0; g < n; ++g)
     for (std::size_t k = start_[g]; k < start_[g + 1]; ++k) {
-      const long c = cells_[k];
-      sums[3 * g] += weights_[k] * f.rho[c] * f.cp[c];
-      sums[3 * g + 1] += weights_[k] * f.rho[c];
+      sums[3 * g] += parcel_capacity(f, k);
+      sums[3 * g + 1] += parcel_mass(f, k);
       sums[3 * g + 2] += available[k];
     }
   if (n) MPI_Allreduce(MPI_IN_PLACE, sums.data(), int(3 * n), MPI_DOUBLE, MPI_SUM, comm_);
@@ -292,18 +236,29 @@ void ParallelExchange::deposit_taken(const std::vector<std::int64_t> &ids, const
     const double Q = std::abs(a[0]);
     for (std::size_t k = start_[g]; k < start_[g + 1]; ++k) {
       const long c = cells_[k];
-      const double by_capacity = capacity > 0.0 ? weights_[k] * f.rho[c] * f.cp[c] / capacity : weights_[k];
+      const double by_capacity = capacity > 0.0 ? parcel_capacity(f, k) / capacity : weights_[k];
       // each cell by the heat it has above (below) the particle's temperature, so each moves
-      // the same fraction of the way towards it and none passes it; what is beyond all cells'
-      // room (the fluid step is too long: the bound guard stops the run) by capacity
+      // the same fraction of the way towards it and none passes it; the two-body exchange
+      // never takes more (round-off aside: what is beyond all cells' room goes by capacity)
       const double given =
           Q <= room ? (room > 0.0 ? Q * available[k] / room : 0.0) : available[k] + (Q - room) * by_capacity;
-      const double mass_share = mass > 0.0 ? weights_[k] * f.rho[c] / mass : weights_[k];
+      const double mass_share = mass > 0.0 ? parcel_mass(f, k) / mass : weights_[k];
       Amounts &cell = cell_amounts.at(std::size_t(c));
       cell[kEnthalpy] -= std::copysign(given, a[0]);
       for (int d = 0; d < 3; ++d) cell[kMomX + d] -= mass_share * a[1 + d];
     }
   }
+}
+
+double ParallelExchange::parcel_mass(const CellFluidFields &f, std::size_t k) const
+{
+  const long c = cells_[k];
+  return f.volume ? share_[k] * f.rho[c] * f.volume[c] : weights_[k] * f.rho[c];
+}
+
+double ParallelExchange::parcel_capacity(const CellFluidFields &f, std::size_t k) const
+{
+  return parcel_mass(f, k) * f.cp[cells_[k]];
 }
 
 void ParallelExchange::local_weights(std::int64_t g, std::vector<CellWeight> &out) const

@@ -12,76 +12,6 @@ namespace meltdem::coupling {
 
 namespace {
 
-constexpr int kGaussPoints = 16;
-
-// Gauss-Legendre nodes/weights on [0, 1] (Newton on P_n, computed once)
-struct GaussLegendre {
-  std::array<double, kGaussPoints> x, w;
-  GaussLegendre()
-  {
-    const int n = kGaussPoints;
-    for (int i = 0; i < n; ++i) {
-      double t = std::cos(M_PI * (i + 0.75) / (n + 0.5)), dp = 0.0;
-      for (int it = 0; it < 100; ++it) {
-        double p0 = 1.0, p1 = t;
-        for (int k = 2; k <= n; ++k) {
-          const double p2 = ((2.0 * k - 1.0) * t * p1 - (k - 1.0) * p0) / k;
-          p0 = p1;
-          p1 = p2;
-        }
-        dp = n * (t * p1 - p0) / (t * t - 1.0);
-        const double dt = p1 / dp;
-        t -= dt;
-        if (std::abs(dt) < 1e-16) break;
-      }
-      x[i] = 0.5 * (1.0 - t);
-      w[i] = 1.0 / ((1.0 - t * t) * dp * dp);  // = 2/((1-t^2) P'^2) scaled by 1/2 for [0,1]
-    }
-  }
-};
-
-const GaussLegendre &gauss()
-{
-  static const GaussLegendre g;
-  return g;
-}
-
-template <class F> double gauss_rule(const F &f, double u0, double u1)
-{
-  const auto &g = gauss();
-  double sum = 0.0;
-  for (int q = 0; q < kGaussPoints; ++q) sum += g.w[q] * f(u0 + (u1 - u0) * g.x[q]);
-  return sum * (u1 - u0);
-}
-
-template <class F> double adaptive_gauss(const F &f, double u0, double u1, double whole, double tol, int depth)
-{
-  const double um = 0.5 * (u0 + u1);
-  const double left = gauss_rule(f, u0, um), right = gauss_rule(f, um, u1);
-  // tol is not halved per level: it sits near round-off of the whole, and a halved one
-  // would chase the rounding noise down to the depth limit
-  if (std::abs(left + right - whole) <= tol || depth >= 12) return left + right;
-  return adaptive_gauss(f, u0, um, left, tol, depth + 1) + adaptive_gauss(f, um, u1, right, tol, depth + 1);
-}
-
-// ∫_0^y sqrt(R^2 - t^2) dt for |y| <= R
-double circle_primitive(double R, double y)
-{
-  // (R - y)(R + y) and atan2 instead of R^2 - y^2 and asin(y/R): both lose half the digits near |y| = R
-  const double yy = std::clamp(y, -R, R);
-  const double s = std::sqrt((R - yy) * (R + yy));
-  return 0.5 * (yy * s + R * R * std::atan2(yy, s));
-}
-
-// area of disk(0, R) ∩ rectangle [y0, y1] x [z0, z1]
-double disk_rectangle_area(double R, double y0, double y1, double z0, double z1)
-{
-  if (!(R > 0.0) || y0 >= R || z0 >= R || y1 <= -R || z1 <= -R) return 0.0;
-  const double a = disk_quadrant_area(R, y1, z1) - disk_quadrant_area(R, y0, z1) - disk_quadrant_area(R, y1, z0) +
-                   disk_quadrant_area(R, y0, z0);
-  return std::max(0.0, a);
-}
-
 void check_particle(const Eigen::Vector3d &c, double r)
 {
   if (!(r > 0.0) || !std::isfinite(r) || !c.allFinite())
@@ -91,79 +21,6 @@ void check_particle(const Eigen::Vector3d &c, double r)
 }  // namespace
 
 // ---------------------------------------------------------------------------------------
-double disk_quadrant_area(double R, double b, double c)
-{
-  if (!(R > 0.0) || b <= -R || c <= -R) return 0.0;
-  b = std::min(b, R);
-  c = std::min(c, R);
-  const double yc = std::sqrt(std::max(0.0, (R - c) * (R + c)));  // where the chord z = c meets the circle
-  if (c >= 0.0) {
-    // z-extent at y: 2 s(y) for |y| >= yc, c + s(y) inside
-    double area = 2.0 * (circle_primitive(R, std::min(b, -yc)) - circle_primitive(R, -R));
-    if (b > -yc) {
-      const double yb = std::min(b, yc);
-      area += c * (yb + yc) + circle_primitive(R, yb) - circle_primitive(R, -yc);
-    }
-    if (b > yc) area += 2.0 * (circle_primitive(R, b) - circle_primitive(R, yc));
-    return area;
-  }
-  // c < 0: only |y| < yc has z-extent c + s(y) > 0
-  if (b <= -yc) return 0.0;
-  const double yb = std::min(b, yc);
-  return std::max(0.0, c * (yb + yc) + circle_primitive(R, yb) - circle_primitive(R, -yc));
-}
-
-double sphere_box_overlap(const Eigen::Vector3d &c, double r, const Eigen::Vector3d &lo, const Eigen::Vector3d &hi)
-{
-  if (!(r > 0.0)) return 0.0;
-  // disjoint: closest point of the box at distance >= r
-  const Eigen::Vector3d closest = c.cwiseMax(lo).cwiseMin(hi);
-  if ((closest - c).squaredNorm() >= r * r) return 0.0;
-  // box inside the sphere: farthest corner within r
-  const Eigen::Vector3d far = (c - lo).cwiseAbs().cwiseMax((hi - c).cwiseAbs());
-  if (far.squaredNorm() <= r * r) return (hi - lo).prod();
-  // sphere inside the box
-  if ((c - lo).minCoeff() >= r && (hi - c).minCoeff() >= r) return 4.0 / 3.0 * M_PI * r * r * r;
-
-  const double xa = std::max(lo.x(), c.x() - r), xb = std::min(hi.x(), c.x() + r);
-  if (!(xb > xa)) return 0.0;
-  const double y0 = lo.y() - c.y(), y1 = hi.y() - c.y(), z0 = lo.z() - c.z(), z1 = hi.z() - c.z();
-
-  // kinks of A(x): slice radius rho(x) equal to an edge distance or a corner distance
-  double cuts[2 + 2 * 8];
-  int nc = 0;
-  cuts[nc++] = xa;
-  cuts[nc++] = xb;
-  const double d2[8] = {y0 * y0,           y1 * y1,           z0 * z0,           z1 * z1,
-                        y0 * y0 + z0 * z0, y0 * y0 + z1 * z1, y1 * y1 + z0 * z0, y1 * y1 + z1 * z1};
-  for (double d : d2) {
-    if (d >= r * r) continue;
-    const double h = std::sqrt(r * r - d);  // kink position: rho(x) = sqrt(d)
-    for (double x : {c.x() - h, c.x() + h})
-      if (x > xa && x < xb) cuts[nc++] = x;
-  }
-  std::sort(cuts, cuts + nc);
-
-  // A(u) is analytic in u between kinks, but for a slice circle that just clears an edge
-  // (small edge distance) its complex singularities sit close to the real axis near the
-  // ends: bisect adaptively until two halves agree with the whole to 1e-14 r^3
-  double volume = 0.0;
-  const double tol = 1e-14 * r * r * r;
-  for (int s = 0; s + 1 < nc; ++s) {
-    const double a = cuts[s], b = cuts[s + 1];
-    if (!(b > a)) continue;
-    auto slice = [&](double u) {
-      const double x = a + (b - a) * 0.5 * (1.0 - std::cos(M_PI * u));
-      const double jac = (b - a) * 0.5 * M_PI * std::sin(M_PI * u);
-      const double dx = x - c.x();
-      const double rho = std::sqrt(std::max(0.0, (r - dx) * (r + dx)));
-      return jac * disk_rectangle_area(rho, y0, y1, z0, z1);
-    };
-    volume += adaptive_gauss(slice, 0.0, 1.0, gauss_rule(slice, 0.0, 1.0), tol, 0);
-  }
-  return volume;
-}
-
 void normalise_weights(std::vector<CellWeight> &weights)
 {
   if (weights.empty()) return;
@@ -210,13 +67,79 @@ void append_overlap_volumes(const DistributionMesh &mesh, const Eigen::Vector3d 
                             std::vector<CellWeight> &out)
 {
   thread_local std::vector<long> cells;
+  thread_local std::vector<Eigen::Vector3d> lo, hi;
+  thread_local SphereBoxOverlaps overlaps;
   cells.clear();
   mesh.cells_in_sphere(c, r, cells);
-  Eigen::Vector3d lo, hi;
-  for (long cell : cells) {
-    mesh.cell_bounds(cell, lo, hi);
-    const double v = sphere_box_overlap(c, r, lo, hi);
-    if (v > 0.0) out.push_back({cell, v});
+  lo.resize(cells.size());
+  hi.resize(cells.size());
+  for (std::size_t i = 0; i < cells.size(); ++i) mesh.cell_bounds(cells[i], lo[i], hi[i]);
+  overlaps.reset(c, r, lo, hi);
+  for (std::size_t i = 0; i < cells.size(); ++i) {
+    const double v = overlaps.volume(i);
+    if (v > 0.0) out.push_back({cells[i], v});
+  }
+}
+
+bool boxes_share_face(const Eigen::Vector3d &lo, const Eigen::Vector3d &hi, const Eigen::Vector3d &hlo,
+                      const Eigen::Vector3d &hhi, int &axis, double &plane, double &outward)
+{
+  const double tol = 1e-9 * (hhi - hlo).maxCoeff();
+  int touching = -1, overlapping = 0;
+  for (int a = 0; a < 3; ++a) {
+    const double ov = std::min(hi[a], hhi[a]) - std::max(lo[a], hlo[a]);
+    if (ov > tol) {
+      ++overlapping;
+    } else if (std::abs(ov) <= tol) {
+      if (touching >= 0) return false;  // an edge or a corner, not a face
+      touching = a;
+    } else {
+      return false;
+    }
+  }
+  if (overlapping != 2 || touching < 0) return false;
+  axis = touching;
+  if (std::abs(lo[axis] - hhi[axis]) <= tol) {
+    plane = hhi[axis];
+    outward = 1.0;
+  } else {
+    plane = hlo[axis];
+    outward = -1.0;
+  }
+  return true;
+}
+
+void append_raw_weights(const DistributionMesh &mesh, DistributionModel model, const Eigen::Vector3d &c, double r,
+                        long home, const Eigen::Vector3d &home_lo, const Eigen::Vector3d &home_hi,
+                        std::vector<CellWeight> &out)
+{
+  switch (model) {
+    case DistributionModel::Centre:
+      if (home >= 0) out.push_back({home, 1.0});
+      return;
+
+    case DistributionModel::Neighbours: {
+      // eq. 3.7 volume weights over the centre cell and the face neighbours the particle's
+      // farthest point along the face normal, c + r n, lies beyond
+      if (home >= 0) out.push_back({home, mesh.cell_volume(home)});
+      thread_local std::vector<long> candidates;
+      candidates.clear();
+      mesh.cells_in_sphere(c, r, candidates);
+      Eigen::Vector3d lo, hi;
+      for (long cell : candidates) {
+        if (cell == home) continue;
+        mesh.cell_bounds(cell, lo, hi);
+        int axis;
+        double plane, outward;
+        if (boxes_share_face(lo, hi, home_lo, home_hi, axis, plane, outward) && (c[axis] - plane) * outward + r > 0.0)
+          out.push_back({cell, mesh.cell_volume(cell)});
+      }
+      return;
+    }
+
+    case DistributionModel::Overlap:
+      append_overlap_volumes(mesh, c, r, out);
+      return;
   }
 }
 
@@ -227,34 +150,12 @@ bool distribute_particle(const DistributionMesh &mesh, DistributionModel model, 
   out.clear();
   const long home = mesh.find_cell(c);
   if (home < 0) return false;
-
-  switch (model) {
-    case DistributionModel::Centre:
-      out.push_back({home, 1.0});
-      return true;
-
-    case DistributionModel::Neighbours: {
-      // Codina2019 fig. 3.9: the neighbour across face f is occupied when the particle's
-      // farthest point along the outward normal n, c + r n, lies beyond the face:
-      // (c + r n - x_f) . n > 0. Only direct neighbours of the centre cell (no recursion).
-      thread_local std::vector<DistributionMesh::Face> faces;
-      faces.clear();
-      mesh.face_neighbours(home, faces);
-      out.push_back({home, mesh.cell_volume(home)});
-      for (const auto &f : faces)
-        if ((c - f.centre).dot(f.normal) + r > 0.0) out.push_back({f.neighbour, mesh.cell_volume(f.neighbour)});
-      normalise_weights(out);  // eq. 3.7
-      return true;
-    }
-
-    case DistributionModel::Overlap: {
-      append_overlap_volumes(mesh, c, r, out);
-      if (out.empty()) return false;
-      normalise_weights(out);
-      return true;
-    }
-  }
-  return false;
+  Eigen::Vector3d home_lo, home_hi;
+  mesh.cell_bounds(home, home_lo, home_hi);
+  append_raw_weights(mesh, model, c, r, home, home_lo, home_hi, out);
+  if (out.empty()) return false;
+  normalise_weights(out);
+  return true;
 }
 
 // ---------------------------------------------------------------------------------------
@@ -323,28 +224,6 @@ double CartesianGridMesh::cell_volume(long cell) const
   Eigen::Vector3d lo, hi;
   cell_bounds(cell, lo, hi);
   return (hi - lo).prod();
-}
-
-void CartesianGridMesh::face_neighbours(long cell, std::vector<Face> &faces) const
-{
-  int ii[3];
-  ijk(cell, ii[0], ii[1], ii[2]);
-  Eigen::Vector3d lo, hi;
-  cell_bounds(cell, lo, hi);
-  const Eigen::Vector3d mid = 0.5 * (lo + hi);
-  for (int d = 0; d < 3; ++d)
-    for (int side : {-1, 1}) {
-      int nb[3] = {ii[0], ii[1], ii[2]};
-      nb[d] += side;
-      if (nb[d] < 0 || nb[d] >= n_[d]) continue;  // boundary face
-      Face f;
-      f.neighbour = index(nb[0], nb[1], nb[2]);
-      f.centre = mid;
-      f.centre[d] = side < 0 ? lo[d] : hi[d];
-      f.normal = Eigen::Vector3d::Zero();
-      f.normal[d] = side;
-      faces.push_back(f);
-    }
 }
 
 void CartesianGridMesh::cells_in_sphere(const Eigen::Vector3d &c, double r, std::vector<long> &cells) const

@@ -91,6 +91,90 @@ MeltStepResult heat_melt_step(const MeltMaterial &mat, double h, double m, doubl
   return r;
 }
 
+MeltStepResult heat_melt_step_two_body(const MeltMaterial &mat, double h, double m, double d, double k_nu,
+                                       double T_fluid, double C_fluid, double dt)
+{
+  if (!(C_fluid > 0.0)) {
+    MeltStepResult r = heat_melt_step(mat, h, m, d, k_nu, T_fluid, dt);
+    r.T_fluid = T_fluid;
+    return r;
+  }
+  check_material(mat);
+  if (!(m > 0.0) || !(d > 0.0)) throw std::invalid_argument("heat_melt_step needs m > 0, d > 0");
+  if (!(k_nu >= 0.0) || !(dt >= 0.0)) throw std::invalid_argument("heat_melt_step needs k Nu >= 0, dt >= 0");
+  if (!std::isfinite(C_fluid)) throw std::invalid_argument("heat_melt_step needs a finite fluid heat capacity");
+
+  const double hm = mat.cp * mat.Tmelt;
+  MeltStepResult r;
+  r.h = std::min(h, hm);
+  r.m = m;
+  r.d = d;
+  r.T_fluid = T_fluid;
+  if (k_nu == 0.0 || dt == 0.0) return r;
+
+  double t_left = dt;
+  const double T = r.h / mat.cp;
+  if (!(r.h >= hm && T_fluid > mat.Tmelt)) {
+    // sensible stage: the particle gains the share C_f / (C_p + C_f) of the difference at equilibrium
+    const double Cp = m * mat.cp, G = k_nu * M_PI * d;
+    const double rate = G * (1.0 / Cp + 1.0 / C_fluid);
+    const double D0 = T_fluid - T, gain = C_fluid / (Cp + C_fluid) * D0;
+    double h_new;
+    const double f = gain > 0.0 ? (mat.Tmelt - T) / gain : 2.0;  // fraction of the way that reaches Tm
+    if (f < 1.0 && -std::log1p(-f) / rate < dt) {
+      t_left = dt + std::log1p(-f) / rate;
+      h_new = hm;
+    } else {
+      t_left = 0.0;
+      h_new = std::min(mat.cp * (T - gain * std::expm1(-rate * dt)), hm);
+    }
+    r.heat = m * (h_new - r.h);  // exactly the enthalpy change
+    r.h = h_new;
+  }
+
+  // melting stage: the particle at Tm, every joule it takes melts mass
+  if (t_left > 0.0 && r.h >= hm && T_fluid - r.heat / C_fluid > mat.Tmelt) {
+    const double rho = m / (M_PI / 6.0 * d * d * d);
+    double theta = T_fluid - r.heat / C_fluid - mat.Tmelt, m_now = m, d_now = d;
+    for (int piece = 0; t_left > 0.0 && theta > 0.0; ++piece) {
+      const double cap = 0.03 * m_now * mat.latent;  // at most 3 % of the mass per piece
+      double tau = t_left;
+      auto heat_in = [&](double G, double t) { return -C_fluid * theta * std::expm1(-G * t / C_fluid); };
+      if (C_fluid * theta > cap && piece < 1000) {
+        const double G0 = k_nu * M_PI * d_now;
+        tau = std::min(t_left, -C_fluid / G0 * std::log1p(-cap / (C_fluid * theta)));
+      }
+      // G at the mid diameter of the piece (predicted with the start diameter)
+      const double m_pred = std::max(0.0, m_now - heat_in(k_nu * M_PI * d_now, tau) / mat.latent);
+      const double d_mid = 0.5 * (d_now + d_now * std::cbrt(m_pred / m_now));
+      double Q = heat_in(k_nu * M_PI * d_mid, tau);
+      if (Q >= m_now * mat.latent) {
+        m_now = 0.0;
+        break;
+      }
+      theta -= Q / C_fluid;
+      m_now -= Q / mat.latent;
+      d_now = std::cbrt(m_now / (rho * M_PI / 6.0));
+      t_left -= tau;
+    }
+    double m_new = m_now;
+    if (!(m_new > 0.0)) {
+      m_new = 0.0;
+      r.d = 0.0;
+      r.fully_molten = true;
+    } else {
+      r.d = d_now;
+    }
+    r.mass_melted = m - m_new;
+    r.m = m_new;
+    r.heat += r.mass_melted * mat.latent;
+    r.enthalpy_out = r.mass_melted * (hm + mat.latent);
+  }
+  // the parcel lost what the particle took
+  r.T_fluid = T_fluid - r.heat / C_fluid;
+  return r;
+}
+
 MeltStepResult absorb_heat(const MeltMaterial &mat, double h, double m, double d, double energy)
 {
   check_material(mat);

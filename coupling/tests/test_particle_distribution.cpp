@@ -53,6 +53,42 @@ double exact_weight_sum(const std::vector<CellWeight> &w)
   return s.value();
 }
 
+// Hexahedral cells of different sizes side by side (a refinement level jump with hanging
+// faces): a list of boxes searched by brute force
+class BoxListMesh : public DistributionMesh {
+ public:
+  std::vector<Vector3d> lo, hi;
+  void add(const Vector3d &l, const Vector3d &h) { lo.push_back(l), hi.push_back(h); }
+  long find_cell(const Vector3d &p) const override
+  {
+    for (std::size_t i = 0; i < lo.size(); ++i)
+      if ((p.array() >= lo[i].array()).all() && (p.array() < hi[i].array()).all()) return long(i);
+    return -1;
+  }
+  void cell_bounds(long cell, Vector3d &l, Vector3d &h) const override { l = lo[cell], h = hi[cell]; }
+  Vector3d cell_centre(long cell) const override { return 0.5 * (lo[cell] + hi[cell]); }
+  double cell_volume(long cell) const override { return (hi[cell] - lo[cell]).prod(); }
+  void cells_in_sphere(const Vector3d &c, double r, std::vector<long> &cells) const override
+  {
+    for (std::size_t i = 0; i < lo.size(); ++i)
+      if ((c.cwiseMax(lo[i]).cwiseMin(hi[i]) - c).squaredNorm() < r * r) cells.push_back(long(i));
+  }
+};
+
+// [0,1]^3 coarse beside [1,2]x[0,1]^2 split into 8 cells of 0.5
+BoxListMesh level_jump_mesh()
+{
+  BoxListMesh m;
+  m.add(Vector3d(0, 0, 0), Vector3d(1, 1, 1));
+  for (int k = 0; k < 2; ++k)
+    for (int j = 0; j < 2; ++j)
+      for (int i = 0; i < 2; ++i) {
+        const Vector3d l(1.0 + 0.5 * i, 0.5 * j, 0.5 * k);
+        m.add(l, l + Vector3d(0.5, 0.5, 0.5));
+      }
+  return m;
+}
+
 }  // namespace
 
 TEST(ParticleDistribution, DiskQuadrantArea)
@@ -179,6 +215,38 @@ TEST(ParticleDistribution, NeighboursEq37ByHand)
   ASSERT_TRUE(distribute_particle(uni, DistributionModel::Neighbours, Vector3d(2.5, 2.5, 0.5), 0.8, w));
   expect_absolute("at the floor: number of occupied cells", double(w.size()), 6.0, 0.0);
   expect_absolute("at the floor: weights sum", exact_weight_sum(w), 1.0, 1e-15);
+}
+
+TEST(ParticleDistribution, AcrossARefinementLevelJump)
+{
+  const BoxListMesh mesh = level_jump_mesh();
+  std::vector<CellWeight> w;
+  // in the coarse cell, through x = 1 into one of the four small cells behind that face
+  // (the sphere misses the other three): volume weights 1 and 1/8
+  ASSERT_TRUE(distribute_particle(mesh, DistributionModel::Neighbours, Vector3d(0.9, 0.3, 0.3), 0.2, w));
+  expect_absolute("coarse -> fine: occupied cells", double(w.size()), 2.0, 0.0);
+  for (const auto &cw : w)
+    expect_relative("coarse -> fine: w of cell " + std::to_string(cw.cell), cw.weight,
+                    cw.cell == 0 ? 1.0 / 1.125 : 0.125 / 1.125, 1e-15);
+  // in a small cell, through x = 1 into the coarse cell (a face that is part of its face)
+  ASSERT_TRUE(distribute_particle(mesh, DistributionModel::Neighbours, Vector3d(1.1, 0.25, 0.25), 0.15, w));
+  expect_absolute("fine -> coarse: occupied cells", double(w.size()), 2.0, 0.0);
+  for (const auto &cw : w)
+    expect_relative("fine -> coarse: w of cell " + std::to_string(cw.cell), cw.weight,
+                    cw.cell == 0 ? 1.0 / 1.125 : 0.125 / 1.125, 1e-15);
+  // overlap over the jump: each weight is its cell's sphere-box volume over the sphere
+  const Vector3d c(0.95, 0.45, 0.55);
+  const double r = 0.3;
+  ASSERT_TRUE(distribute_particle(mesh, DistributionModel::Overlap, c, r, w));
+  double worst = 0.0;
+  for (const auto &cw : w) {
+    Vector3d lo, hi;
+    mesh.cell_bounds(cw.cell, lo, hi);
+    worst = std::max(worst, std::abs(cw.weight - sphere_box_overlap(c, r, lo, hi) / sphere_volume(r)));
+  }
+  expect_absolute("overlap across the jump: cells", double(w.size()), 5.0, 0.0);
+  expect_absolute("overlap across the jump: max |w - V_cell / V_sphere|", worst, 0.0, 1e-15);
+  expect_absolute("overlap across the jump: weights sum", exact_weight_sum(w), 1.0, 1e-15);
 }
 
 TEST(ParticleDistribution, WeightsSumToOneAndMassConserved)

@@ -4,8 +4,10 @@
 #include "meltdem/coupling/particle_melting.h"
 #include "validation_report.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 
 using namespace meltdem::coupling;
 using meltdem::testing::expect_absolute;
@@ -205,6 +207,67 @@ TEST(ParticleMelting, FrozenFluidStepOverdrawsASmallCell)
     } else {
       EXPECT_GT(worst, 0.0) << tag << ": the cell must pass the particle's starting temperature";
     }
+  }
+}
+
+TEST(ParticleMelting, TwoBodyStepNeverOvershootsForAnyStep)
+{
+  // the cell of the frozen-fluid test as the parcel of a two-body step: at 0.5 to 1e4 times the
+  // crossing step, 40 steps, the cell never leaves [particle, cell] and the pair's energy closes
+  const MeltMaterial hot{48.35, 1e9, 2.7e5};
+  const double C = 1.6115 * 5210.928 * std::pow(0.7e-3, 3), mcp = m0 * hot.cp, G = k_nu * M_PI * d0;
+  const double r = mcp / C, t_cross = mcp / G * std::log(r / (r - 1.0));
+  const double T_c0 = 1500.0, T_p0 = 300.0, T_eq = (C * T_c0 + mcp * T_p0) / (C + mcp);
+  for (double f : {0.5, 1.1, 3.0, 1e4}) {
+    double Tc = T_c0, h = hot.cp * T_p0, worst = 0.0, energy_error = 0.0;
+    for (int s = 0; s < 40; ++s) {
+      const double lo = std::min(Tc, h / hot.cp), hi = std::max(Tc, h / hot.cp);
+      const auto res = heat_melt_step_two_body(hot, h, m0, d0, k_nu, Tc, C, f * t_cross);
+      energy_error = std::max(energy_error, std::abs(C * (Tc - res.T_fluid) - res.heat) / (mcp * (T_c0 - T_p0)));
+      h = res.h;
+      Tc = res.T_fluid;
+      worst =
+          std::max(worst, temperature_overshoot(lo, hi, std::min(Tc, h / hot.cp), std::max(Tc, h / hot.cp), 0.0, true));
+    }
+    const std::string tag = "two-body, dt = " + std::to_string(f) + " x crossing step";
+    expect_absolute(tag + ": overshoot [K] over 40 steps", worst, 0.0, 0.0);
+    expect_absolute(tag + ": |C dT_cell - heat| / (m cp dT0)", energy_error, 0.0, 1e-13);
+    expect_relative(tag + ": cell at the equilibrium T [K]", Tc, T_eq, 1e-6);
+  }
+  // the sensible stage is exact: one step equals a thousand
+  double h1 = hot.cp * T_p0, Tc1 = T_c0;
+  const auto one = heat_melt_step_two_body(hot, h1, m0, d0, k_nu, Tc1, C, 3.0 * t_cross);
+  for (int s = 0; s < 1000; ++s) {
+    const auto st = heat_melt_step_two_body(hot, h1, m0, d0, k_nu, Tc1, C, 3.0 * t_cross / 1000);
+    h1 = st.h, Tc1 = st.T_fluid;
+  }
+  expect_relative("two-body: particle T after 3 crossing steps, 1 step vs 1000", one.h / hot.cp, h1 / hot.cp, 1e-12);
+}
+
+TEST(ParticleMelting, TwoBodyMeltingIsBoundedByTheParcel)
+{
+  // the Codina2019 particle in a parcel of 3 x its heat capacity at 2500 K: with an
+  // unbounded step it melts exactly what the parcel holds above Tm beyond heating it
+  const double mcp = m0 * steel.cp, C = 3.0 * mcp, Tf = 2500.0, T0 = 300.0;
+  const auto r = heat_melt_step_two_body(steel, steel.cp * T0, m0, d0, k_nu, Tf, C, 1e3);
+  const double sensible = mcp * (steel.Tmelt - T0);
+  const double melted_ref = std::min(m0, (C * (Tf - steel.Tmelt) - sensible) / steel.latent);
+  expect_relative("two-body, long step: mass melted vs (C (Tf - Tm) - m cp (Tm - T0)) / L", r.mass_melted, melted_ref,
+                  1e-9);
+  expect_relative("two-body, long step: parcel ends at Tm [K]", r.T_fluid, steel.Tmelt, 1e-9);
+  expect_relative("two-body, long step: m h + heat = m' h' + out", m0 * steel.cp * T0 + r.heat,
+                  r.m * r.h + r.enthalpy_out, 1e-14);
+  // a parcel a million times the particle behaves as the unbounded fluid: the d^2 law
+  const double t_star = tau * std::log(T_gas / (T_gas - steel.Tmelt));
+  for (int nsteps : {1, 10}) {
+    double h = 0.0, m = m0, d = d0;
+    for (int s = 0; s < nsteps; ++s) {
+      const auto st = heat_melt_step_two_body(steel, h, m, d, k_nu, T_gas, 1e6 * mcp, (t_star + 1e-3) / nsteps);
+      h = st.h, m = st.m, d = st.d;
+    }
+    const double d_ref = std::sqrt(d0 * d0 - 4.0 * k_nu * (T_gas - steel.Tmelt) * 1e-3 / (rho * steel.latent));
+    expect_relative("two-body, parcel 1e6 m cp: d(t* + 1 ms) vs d^2 law, " + std::to_string(nsteps) + " steps", d,
+                    d_ref, 1e-4);
   }
 }
 

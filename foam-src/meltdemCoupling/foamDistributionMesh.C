@@ -80,35 +80,6 @@ double Foam::meltdem::foamDistributionMesh::cell_volume(long cell) const
 }
 
 
-void Foam::meltdem::foamDistributionMesh::face_neighbours
-(
-    long cell,
-    std::vector<Face>& out
-) const
-{
-    const label celli = label(cell);
-    const labelList& own = mesh_.faceOwner();
-    const labelList& nei = mesh_.faceNeighbour();
-    for (const label facei : mesh_.cells()[celli])
-    {
-        if (!mesh_.isInternalFace(facei)) continue;
-        const bool owner = own[facei] == celli;
-        const vector& Sf = mesh_.faceAreas()[facei];
-        const vector n = (owner ? 1.0 : -1.0)*Sf/mag(Sf);
-        const point& fc = mesh_.faceCentres()[facei];
-        out.push_back
-        (
-            Face
-            {
-                long(owner ? nei[facei] : own[facei]),
-                Eigen::Vector3d(fc.x(), fc.y(), fc.z()),
-                Eigen::Vector3d(n.x(), n.y(), n.z())
-            }
-        );
-    }
-}
-
-
 void Foam::meltdem::foamDistributionMesh::cells_in_sphere
 (
     const Eigen::Vector3d& c,

@@ -13,14 +13,14 @@ assumes the cells are large against the particle: the particle samples the cells
 d/dx >= 1 it sees colder gas and melts later (booked XFAIL there).
 
 Decided behaviour per model and ratio:
-  - every model at 0.1 and 1, overlap at 10: runs; no NaN; the continuum temperature stays in
-    [T0, 1500] K; per-step continuum mass / energy errors <= 1e-13 / 1e-6; the metal handed over
-    equals the mass the particle lost (1e-12); the heat it took = its sensible heat to Tm plus L
-    per kilogram melted (1e-9); the fluid step does not collapse (>= 1/2 of the first);
-  - centre and neighbours at 10: the whole particle's heat exchange lands on 1 (7) cells of
-    1/524 (7/524) of its volume: the run must stop after the first step with the message naming
-    the distribution (overlap), maxDeltaT and demStepsPerFluidStep (without the guard the run
-    goes on silently with unbounded temperatures, alpha.metal above 1 and a collapsed fluid step).
+  - every model at every ratio runs; no NaN; the continuum temperature stays in [T0, 1500] K;
+    per-step continuum mass / energy errors <= 1e-13 / 1e-6; the metal handed over equals the
+    mass the particle lost (1e-12); the heat it took = its enthalpy gain plus the enthalpy its
+    melt handed over (1e-9); the fluid step does not collapse (>= 1/2 of the first);
+  - centre and neighbours at 10 put the particle's whole heat exchange on 1 (7) cells of 1/524
+    (7/524) of its volume: the exchange is a two-body relaxation of the particle and its share of
+    those cells, so they approach its temperature and never pass it, and the particle melts as
+    fast as they are resupplied (slower than the reference: XFAIL above).
 usage: size_ratio.py --model centre|neighbours|overlap [--keep]
 """
 import argparse
@@ -42,7 +42,7 @@ U = 2.0
 SLIP = 0.0  # the particle moves with the gas
 CELLS = {0.1: (1, 3, 1), 1.0: (3, 5, 3), 10.0: (16, 24, 16)}
 T_END = {0.1: 2.5e-4, 1.0: 5e-4, 10.0: 4e-4}
-STOPS = {("centre", 10.0), ("neighbours", 10.0)}
+STOPS = set()  # (model, ratio) that must stop at once: none since the two-body exchange
 XFAIL_SLOW = ("unresolved coupling at d/dx >= 1: the particle samples the cells it cools, not the undisturbed "
               "gas of the reference")
 
@@ -96,10 +96,12 @@ def run_ratio(test, work, model, ratio, t_ref, keep):
     ok &= check_at_most(test, f"{tag}: highest continuum T - 1500 K [K]", Tr[:, 1].max() - cc.GAS["T"], 1e-3)
     ok &= cc.check_balances(f"{test}.ratio{ratio:g}", led)
     melted = np.cumsum(pc["mass_melted"])
-    ok &= check_relative(test, f"{tag}: metal handed over vs mass the particle lost [kg]", melted[-1],
-                         M - pc["solid_mass"][-1], 1e-12)
-    ok &= check_relative(test, f"{tag}: heat taken vs m cp (Tm - T0) + L m_melted [J]", np.sum(pc["heat_absorbed"]),
-                         M * CP * (TM - T0) + L * melted[-1], 1e-9)
+    ok &= check_absolute(test, f"{tag}: metal handed over vs mass the particle lost [kg] (to 1e-12 m)", melted[-1],
+                         M - pc["solid_mass"][-1], 1e-12 * M)
+    # the particle's energy: what it took = its enthalpy gain + the enthalpy its melt handed over
+    gain = pc["particle_enthalpy"][-1] - M * CP * T0 + np.sum(pc["enthalpy_handed_over"])
+    ok &= check_relative(test, f"{tag}: heat taken vs particle enthalpy gain + enthalpy handed over [J]",
+                         np.sum(pc["heat_absorbed"]), gain, 1e-9)
     ok &= check_at_most(test, f"{tag}: fluid step collapse: first step / smallest", pc["dt"][0] / pc["dt"].min(), 2.0)
     t = pc["time"]
     i = np.searchsorted(melted, 0.5 * M)

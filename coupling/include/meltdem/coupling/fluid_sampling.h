@@ -21,7 +21,7 @@ struct CellFluidFields {
   const double *U = nullptr;
   const double *alpha_metal = nullptr;
   const double *liquid_fraction = nullptr;
-  const double *volume = nullptr;  // cell volumes: gives FluidState::mass (null: mass 0)
+  const double *volume = nullptr;  // cell volumes: give FluidState::mass, capacity (null: 0)
 };
 
 struct SampledFluid {
@@ -30,22 +30,24 @@ struct SampledFluid {
   double liquid_fraction = 0.0;  // of that metal
 };
 
-// Weighted mean of the cell fields over `weights` (which sum to 1). The temperature is
-// the heat-capacity-weighted mean sum w rho cp T / sum w rho cp (the temperature the
-// covered cells would reach if mixed; the plain mean where all capacities are zero): a
-// particle half in melt, half in gas sees the melt's temperature, not the middle, and
-// the heat it takes is drawn from the cells by what each holds beyond the particle's
-// temperature (ParallelExchange::deposit_taken), so gas colder than the particle gives none
-// of it. The
-// velocity likewise is the mass-weighted mean sum w rho U / sum w rho (the mixture's
-// momentum over its mass), and the drag reaction is split by w rho.
+// What a particle sees of the continuum. Properties (k, rho, mu, cp, alpha, liquid fraction)
+// are the means over its distribution weights w (which sum to 1). Temperature and velocity
+// are those of its parcel, the fluid it exchanges heat and momentum with as a second body:
+// its share s of each cell it touches (by conductance: w d over the sum of w d of the
+// particles in the cell; all of a cell it is alone in), T = sum s rho cp V T / sum s rho cp V (a particle half in melt,
+// half in gas sees the melt's temperature, not the middle), U = sum s rho V U / sum s rho V,
+// with FluidState::capacity and ::mass the parcel's sums. As the shares of a cell sum to 1 over
+// the particles in it, the parcels never hold more than the cells, and the exchange can be
+// integrated as two bodies for any step (ParallelExchange::deposit_taken takes each parcel's
+// loss from its cells). Without cell volumes the parcel uses w per unit volume and its mass
+// and capacity are 0 (unbounded). sample_fluid() is a particle alone (s = 1).
 // Throws std::invalid_argument for empty weights or a missing required field.
 SampledFluid sample_fluid(const std::vector<CellWeight> &weights, const CellFluidFields &fields);
 
 // The weighted sums sample_fluid() forms, kept apart so that they can be summed over ranks
 // before they are finished (ParallelExchange::sample_global): add each cell, then finish.
-constexpr int kSampleSums = 17;
-void add_cell_to_sample(const CellFluidFields &fields, long cell, double weight, double *sums);
+constexpr int kSampleSums = 18;
+void add_cell_to_sample(const CellFluidFields &fields, long cell, double weight, double share, double *sums);
 SampledFluid finish_sample(const double *sums);
 
 // FluidStateProvider over a mesh: particle i (radius radii[i]) sees the fields averaged

@@ -19,7 +19,9 @@ struct FluidState {
   bool thermal = true;            // false: the continuum solves no energy equation, so the
                                   // particle is isothermal (drag only: no heat, no melting)
   double mass = 0.0;              // fluid mass the particle exchanges momentum with [kg]:
-                                  // sum of w rho V over its cells (0: unbounded, 'ambient')
+                                  // its share of its cells' mass (0: unbounded, 'ambient')
+  double capacity = 0.0;          // heat capacity [J/K] of the fluid it exchanges heat with:
+                                  // its share of its cells' rho cp V (0: unbounded, 'ambient')
 };
 
 class FluidStateProvider {

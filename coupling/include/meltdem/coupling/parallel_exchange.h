@@ -18,7 +18,8 @@
 // sees; its temperature weighted by heat capacity and its velocity by mass too); deposit()
 // spreads the melt the particles hand over onto the cells with the same weights, and
 // deposit_taken() takes the heat and impulse they took from the cells (heat by what each
-// cell holds beyond the particle's temperature, impulse by mass weights), so the exchange is symmetric and sums to what was handed over to round-off.
+// cell holds beyond the particle's temperature, impulse by the parcel's mass shares), so the
+// exchange is symmetric and sums to what was handed over to round-off.
 // Serial runs use the same code, so np N equals np 1 to round-off.
 #include "meltdem/coupling/exchange_record.h"
 #include "meltdem/coupling/fluid_sampling.h"
@@ -82,15 +83,16 @@ class ParallelExchange {
   // heat (J; negative: gave) from the enthalpy, each cell c in proportion to the heat it
   // holds beyond the particle's temperature T_p (end of step) on the side the heat flowed,
   // A_c = s_ic rho_c cp_c V_c max(T_c - T_p, 0) for heat taken (T_p - T_c for heat given),
-  // s_ic the particle's part of the particle volume cell c holds (1 for a particle alone
-  // in the cell), so every cell moves the same fraction of the way towards T_p and
+  // s_ic = w_ic d_i / sum_j w_jc d_j the particle's share of cell c by conductance (1 for a
+  // particle alone in the cell), so every cell moves the same fraction of the way towards T_p and
   // none passes it: a gas cell colder than a grain that takes heat from the melt beside it
-  // gives nothing, and the melt gives it all. Heat beyond sum_c A_c (a fluid step too
-  // long for the cells' capacity: the bound guard of the solver stops the run) is taken by
-  // the capacity weights w_ic rho_c cp_c / sum w rho cp the fluid temperature was sampled
-  // with. The drag and buoyancy impulse (kg m/s) comes from the momentum with the share
-  // w_ic rho_c / sum_c' w_ic' rho_c' (volume weights where the sums are zero), the weights
-  // its fluid velocity was sampled with, so a light gas cell beside melt gives little.
+  // gives nothing, and the melt gives it all. The particle's parcel (sample()) is the sum of
+  // its shares s_ic, and a two-body exchange with it (heat_melt_step_two_body) never takes
+  // more than sum_c A_c; heat beyond it (round-off, or an explicit caller) is taken by the
+  // parcel's capacities s_ic rho_c cp_c V_c / sum. The drag and buoyancy impulse (kg m/s)
+  // comes from the momentum with the parcel's mass shares s_ic rho_c V_c / sum, so each
+  // cell's velocity moves by s_ic times the parcel's and a light gas cell beside melt gives
+  // little.
   // Sums to what was taken exactly; particles outside the mesh give nothing. The particles
   // are named by id (any rank may report any located particle: call it with the location
   // the fluid was sampled at, and the particles' records after they moved); located
@@ -119,6 +121,11 @@ class ParallelExchange {
   std::vector<std::size_t> start_;
   std::vector<long> cells_;
   std::vector<double> weights_;
+  std::vector<double> share_;  // per weight: the particle's share of the cell (its parcel)
+  // weight k's cell's part of its particle's parcel: mass, heat capacity (per unit volume
+  // and by the weights without cell volumes)
+  double parcel_mass(const CellFluidFields &f, std::size_t k) const;
+  double parcel_capacity(const CellFluidFields &f, std::size_t k) const;
 };
 
 }  // namespace meltdem::coupling

@@ -12,8 +12,10 @@
 //                and the rest renormalised.
 // Weights are normalised so that their (exact) sum is 1 to round-off: the caller's
 // distributed quantity q * w_i sums back to q to round-off.
-// Cost per particle: the CostPerParticleNote test prints it. `overlap` costs per cell the
-// sphere surface cuts: cache the weights of particles that did not move a cell fraction if needed.
+// `overlap` uses the closed-form sphere-box volume (sphere_box_overlap.h), each plane
+// triple the cells share evaluated once per particle.
+#include "meltdem/coupling/sphere_box_overlap.h"
+
 #include <Eigen/Core>
 
 #include <string>
@@ -26,19 +28,12 @@ namespace meltdem::coupling {
 // axis-aligned cells such as blockMesh / snappy background cells).
 class DistributionMesh {
  public:
-  struct Face {
-    long neighbour;          // cell across the face
-    Eigen::Vector3d centre;  // face centre
-    Eigen::Vector3d normal;  // unit normal pointing out of the owner cell
-  };
   virtual ~DistributionMesh() = default;
   // cell holding point p, -1 when p is outside the mesh
   virtual long find_cell(const Eigen::Vector3d &p) const = 0;
   virtual void cell_bounds(long cell, Eigen::Vector3d &lo, Eigen::Vector3d &hi) const = 0;
   virtual Eigen::Vector3d cell_centre(long cell) const = 0;
   virtual double cell_volume(long cell) const = 0;
-  // internal faces of `cell` (boundary faces have no neighbour and are left out)
-  virtual void face_neighbours(long cell, std::vector<Face> &faces) const = 0;
   // every cell whose bounding box intersects the sphere (a superset is allowed)
   virtual void cells_in_sphere(const Eigen::Vector3d &c, double r, std::vector<long> &cells) const = 0;
 };
@@ -55,7 +50,6 @@ class CartesianGridMesh : public DistributionMesh {
   void cell_bounds(long cell, Eigen::Vector3d &lo, Eigen::Vector3d &hi) const override;
   Eigen::Vector3d cell_centre(long cell) const override;
   double cell_volume(long cell) const override;
-  void face_neighbours(long cell, std::vector<Face> &faces) const override;
   void cells_in_sphere(const Eigen::Vector3d &c, double r, std::vector<long> &cells) const override;
 
   long n_cells() const { return long(n_[0]) * n_[1] * n_[2]; }
@@ -85,22 +79,26 @@ struct CellWeight {
 bool distribute_particle(const DistributionMesh &mesh, DistributionModel model, const Eigen::Vector3d &c, double r,
                          std::vector<CellWeight> &out);
 
+// Raw (unnormalised) weights of the particle over the cells of `mesh`, appended to `out`:
+// the one kernel behind distribute_particle() and ParallelExchange (a rank's cells).
+// home: the cell of `mesh` holding the centre (-1 when it is on no cell of `mesh`);
+// home_lo/home_hi: the bounding box of the cell holding the centre, wherever it lies
+// (`neighbours` takes the cells whose boxes share a face with it and that the particle
+// reaches, Codina2019 fig. 3.9: exact for axis-aligned hexahedra, also across a refinement
+// level jump, where a smaller neighbour counts only if the sphere touches its box).
+void append_raw_weights(const DistributionMesh &mesh, DistributionModel model, const Eigen::Vector3d &c, double r,
+                        long home, const Eigen::Vector3d &home_lo, const Eigen::Vector3d &home_hi,
+                        std::vector<CellWeight> &out);
+
+// Does box [lo, hi] share a face with box [hlo, hhi] (a common plane, overlapping in the other
+// two axes)? Then the axis, the plane and the side of [hlo, hhi] it lies on (+1 / -1).
+bool boxes_share_face(const Eigen::Vector3d &lo, const Eigen::Vector3d &hi, const Eigen::Vector3d &hlo,
+                      const Eigen::Vector3d &hhi, int &axis, double &plane, double &outward);
+
 // Raw (unnormalised) overlap weights |sphere ∩ cell| of the cells of `mesh` the sphere
 // touches, appended to `out` (the `overlap` model before normalisation).
 void append_overlap_volumes(const DistributionMesh &mesh, const Eigen::Vector3d &c, double r,
                             std::vector<CellWeight> &out);
-
-// Volume of sphere(c, r) ∩ box [lo, hi]. Shortcuts for disjoint / box-inside / sphere-inside;
-// otherwise V = ∫ A(x) dx where A(x), the area of the slice disk ∩ rectangle, is exact
-// (inclusion-exclusion of closed-form disk ∩ quadrant areas), integrated on the sub-intervals
-// between the kinks of A (where the slice circle meets a rectangle edge or corner), each under
-// x = a + (b-a)(1 - cos(pi u))/2 (smooths the square-root behaviour at the kinks), by 16-point
-// Gauss-Legendre with adaptive bisection in u to 1e-14 r^3 (a slice circle that barely clears
-// an edge needs it). Accuracy and cost: tests/test_particle_distribution.cpp.
-double sphere_box_overlap(const Eigen::Vector3d &c, double r, const Eigen::Vector3d &lo, const Eigen::Vector3d &hi);
-
-// Area of the disk y^2 + z^2 <= R^2 (centred at 0) with y <= b, z <= c (closed form).
-double disk_quadrant_area(double R, double b, double c);
 
 // Scale positive raw weights to sum 1: divide by their compensated sum, then put the
 // residual 1 - sum(w) (compensated) onto the largest weight.

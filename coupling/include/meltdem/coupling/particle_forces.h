@@ -29,7 +29,9 @@ ParticleForces drag_and_buoyancy(DragModel model, const FluidState &fluid, const
 // explicit drag while a step cannot carry the pair past their common velocity, and at most
 // the impulse that brings both to it in one step (explicit drag overshoots once beta dt > mu:
 // a grain whose response time is shorter than the step, or a light gas parcel pushed past the
-// grain that drives it, which then grows without bound). The pair's momentum is conserved.
+// grain that drives it, which then grows without bound). The pair's momentum is conserved. (The
+// exact slip decay as a constant force, (mu/dt)(1 - exp(-beta dt/mu)), would bias a forced steady
+// state such as the terminal velocity by beta dt / 2 mu; explicit drag keeps it exact.)
 double two_body_drag_coefficient(double beta, double m, double M, double dt);
 
 }  // namespace meltdem::coupling

@@ -45,6 +45,7 @@ struct MeltStepResult {
   double mass_melted = 0.0;   // m_old - m_new [kg], handed to the continuum (eq. 2.3)
   double enthalpy_out = 0.0;  // mass_melted (cp Tm + L) [J] (eq. 2.9)
   bool fully_molten = false;
+  double T_fluid = 0.0;  // temperature of the fluid parcel at the end of the step [K]
 };
 
 // Energy [J] from outside the fluid (a laser) absorbed at once: it heats the particle up
@@ -55,6 +56,17 @@ MeltStepResult absorb_heat(const MeltMaterial &mat, double h, double m, double d
 // One step of length dt with k_nu = k_f Nu [W/(m K)] and fluid temperature T_fluid.
 MeltStepResult heat_melt_step(const MeltMaterial &mat, double h, double m, double d, double k_nu, double T_fluid,
                               double dt);
+
+// The same step against a fluid parcel of finite heat capacity C_fluid [J/K] at T_fluid (the
+// particle's share of its cells, FluidState::capacity) as two bodies: the heat the particle
+// takes, the parcel loses. While the particle is solid below Tm both relax towards their
+// common temperature exactly, Delta(t) = Delta_0 exp(-G (1/C_p + 1/C_fluid) t); once it is at
+// Tm the parcel feeds the melting, theta = T_fluid - Tm decaying as exp(-G t / C_fluid) in
+// pieces that melt at most 3 % of the mass, G at the piece's mid diameter. Neither body passes
+// the other for any dt (the step is stable however long), and m h + heat = m' h' + out.
+// C_fluid <= 0: an unbounded fluid, heat_melt_step(). T_fluid of the result: the parcel's end.
+MeltStepResult heat_melt_step_two_body(const MeltMaterial &mat, double h, double m, double d, double k_nu,
+                                       double T_fluid, double C_fluid, double dt);
 
 // --- The explicit exchange and the cells that pay for it (a particle melting within
 // one step). Over a fluid step each particle heats with the fluid frozen; its cells lose that

@@ -1,0 +1,337 @@
+// Sphere-box overlap volume: closed form, the quadrature it is tested against, and the
+// per-particle lattice of shared planes.
+#include "meltdem/coupling/sphere_box_overlap.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+
+namespace meltdem::coupling {
+
+namespace {
+
+constexpr double kFree = -1.0;  // folded offset of an axis without a constraint
+
+// ∫_0^x sqrt(S^2 - t^2) dt, given w = sqrt(S^2 - x^2)
+double circle_integral(double S2, double x, double w)
+{
+  return 0.5 * (x * w + S2 * std::atan2(x, w));
+}
+
+// The part of F(x) that one cutting plane (at offset c >= 0, y or z) contributes:
+// -1/2 ∫ (R^2 - x^2) asin(c / rho) dx - c/2 ∫ sqrt(R^2 - c^2 - x^2) dx, rho^2 = R^2 - x^2,
+// with w = sqrt(R^2 - c^2 - x^2) (so asin(c / rho) = atan2(c, w)); the first integral by
+// parts, its remainder in closed form (asin, and atan for the 1 / (R^2 - x^2) term).
+double plane_part(double R, double c, double x, double w)
+{
+  if (c == 0.0 || x == 0.0) return 0.0;  // every term carries x or c
+  const double S2 = (R - c) * (R + c);
+  const double v = R * R * x - x * x * x / 3.0;
+  const double rest = c * ((S2 / 6.0 - 2.0 * R * R / 3.0) * std::atan2(x, w) - x * w / 6.0) +
+                      2.0 * R * R * R / 3.0 * std::atan2(x * c, R * w);
+  return -0.5 * (v * std::atan2(c, w) - rest) - 0.5 * c * circle_integral(S2, x, w);
+}
+
+// F(x) = ∫_0^x A(t) dt, A the area of the disk of radius sqrt(R^2 - t^2) with y >= b, z >= c;
+// wb, wc: sqrt(R^2 - b^2 - x^2), sqrt(R^2 - c^2 - x^2)
+double slice_antiderivative(double R, double b, double c, double x, double wb, double wc)
+{
+  return M_PI / 4.0 * (R * R * x - x * x * x / 3.0) + plane_part(R, b, x, wb) + plane_part(R, c, x, wc) + b * c * x;
+}
+
+// U(a, b, c) for b, c >= 0, a in [-R, R]
+double upper_corner_nonneg(double R, double a, double b, double c)
+{
+  const double q = R * R - b * b - c * c;
+  if (!(q > 0.0)) return 0.0;
+  const double xm = std::sqrt(q);
+  if (a >= xm) return 0.0;
+  const double Fm = slice_antiderivative(R, b, c, xm, c, b);
+  if (a <= -xm) return 2.0 * Fm;  // F is odd
+  if (a == 0.0) return Fm;
+  const double wb = std::sqrt(std::max(0.0, (R - b) * (R + b) - a * a));
+  const double wc = std::sqrt(std::max(0.0, (R - c) * (R + c) - a * a));
+  return Fm - slice_antiderivative(R, b, c, a, wb, wc);
+}
+
+// U(a, b, c) for folded offsets in [0, R] or kFree (no constraint along that axis: twice the
+// half at offset 0, the sphere being symmetric)
+double upper_corner(double R, double a, double b, double c)
+{
+  double factor = 1.0;
+  if (a == kFree) a = 0.0, factor *= 2.0;
+  if (b == kFree) b = 0.0, factor *= 2.0;
+  if (c == kFree) c = 0.0, factor *= 2.0;
+  if (a * a + b * b + c * c >= R * R) return 0.0;
+  // the smallest offset along x: 0 there makes F(a) vanish, 0 on both others is a cap
+  if (b < a) std::swap(a, b);
+  if (c < a) std::swap(a, c);
+  if (b == 0.0 && c == 0.0) return factor * M_PI * (R - a) * (R - a) * (2.0 * R + a) / 12.0;
+  return factor * upper_corner_nonneg(R, a, b, c);
+}
+
+// One axis of a box [lo, hi] (offsets from the centre, clamped to [-R, R]) as signed
+// half-space terms over folded offsets: the sphere is symmetric, so {x <= -t} counts as {x >= t}.
+struct AxisTerms {
+  int n = 0;
+  double t[3];
+  double sign[3];
+  void add(double offset, double s, double R)
+  {
+    if (offset >= R) return;  // a half-space beyond the sphere holds none of it
+    t[n] = offset;
+    sign[n++] = s;
+  }
+};
+
+AxisTerms axis_terms(double lo, double hi, double R)
+{
+  AxisTerms a;
+  if (lo >= 0.0) {
+    a.add(lo, 1.0, R);
+    a.add(hi, -1.0, R);
+  } else if (hi <= 0.0) {
+    a.add(-hi, 1.0, R);
+    a.add(-lo, -1.0, R);
+  } else {
+    a.add(kFree, 1.0, R);
+    a.add(-lo, -1.0, R);
+    a.add(hi, -1.0, R);
+  }
+  return a;
+}
+
+// the shortcuts shared by both paths; returns false when the box needs the full evaluation
+bool trivial_overlap(const Eigen::Vector3d &c, double r, const Eigen::Vector3d &lo, const Eigen::Vector3d &hi,
+                     double &volume)
+{
+  const Eigen::Vector3d closest = c.cwiseMax(lo).cwiseMin(hi);
+  if (!(r > 0.0) || (closest - c).squaredNorm() >= r * r) {
+    volume = 0.0;  // disjoint
+    return true;
+  }
+  const Eigen::Vector3d far = (c - lo).cwiseAbs().cwiseMax((hi - c).cwiseAbs());
+  if (far.squaredNorm() <= r * r) {
+    volume = (hi - lo).prod();  // box inside the sphere
+    return true;
+  }
+  if ((c - lo).minCoeff() >= r && (hi - c).minCoeff() >= r) {
+    volume = 4.0 / 3.0 * M_PI * r * r * r;  // sphere inside the box
+    return true;
+  }
+  return false;
+}
+
+double clamp_offset(double d, double r)
+{
+  return std::clamp(d, -r, r);
+}
+
+// ---- quadrature (reference) ----------------------------------------------------------
+constexpr int kGaussPoints = 16;
+
+// Gauss-Legendre nodes/weights on [0, 1] (Newton on P_n, computed once)
+struct GaussLegendre {
+  std::array<double, kGaussPoints> x, w;
+  GaussLegendre()
+  {
+    const int n = kGaussPoints;
+    for (int i = 0; i < n; ++i) {
+      double t = std::cos(M_PI * (i + 0.75) / (n + 0.5)), dp = 0.0;
+      for (int it = 0; it < 100; ++it) {
+        double p0 = 1.0, p1 = t;
+        for (int k = 2; k <= n; ++k) {
+          const double p2 = ((2.0 * k - 1.0) * t * p1 - (k - 1.0) * p0) / k;
+          p0 = p1;
+          p1 = p2;
+        }
+        dp = n * (t * p1 - p0) / (t * t - 1.0);
+        const double dt = p1 / dp;
+        t -= dt;
+        if (std::abs(dt) < 1e-16) break;
+      }
+      x[i] = 0.5 * (1.0 - t);
+      w[i] = 1.0 / ((1.0 - t * t) * dp * dp);  // = 2/((1-t^2) P'^2) scaled by 1/2 for [0,1]
+    }
+  }
+};
+
+const GaussLegendre &gauss()
+{
+  static const GaussLegendre g;
+  return g;
+}
+
+template <class F> double gauss_rule(const F &f, double u0, double u1)
+{
+  const auto &g = gauss();
+  double sum = 0.0;
+  for (int q = 0; q < kGaussPoints; ++q) sum += g.w[q] * f(u0 + (u1 - u0) * g.x[q]);
+  return sum * (u1 - u0);
+}
+
+template <class F> double adaptive_gauss(const F &f, double u0, double u1, double whole, double tol, int depth)
+{
+  const double um = 0.5 * (u0 + u1);
+  const double left = gauss_rule(f, u0, um), right = gauss_rule(f, um, u1);
+  // tol is not halved per level: it sits near round-off of the whole, and a halved one
+  // would chase the rounding noise down to the depth limit
+  if (std::abs(left + right - whole) <= tol || depth >= 12) return left + right;
+  return adaptive_gauss(f, u0, um, left, tol, depth + 1) + adaptive_gauss(f, um, u1, right, tol, depth + 1);
+}
+
+// ∫_0^y sqrt(R^2 - t^2) dt for |y| <= R
+double circle_primitive(double R, double y)
+{
+  // (R - y)(R + y) and atan2 instead of R^2 - y^2 and asin(y/R): both lose half the digits near |y| = R
+  const double yy = std::clamp(y, -R, R);
+  const double s = std::sqrt((R - yy) * (R + yy));
+  return 0.5 * (yy * s + R * R * std::atan2(yy, s));
+}
+
+// area of disk(0, R) ∩ rectangle [y0, y1] x [z0, z1]
+double disk_rectangle_area(double R, double y0, double y1, double z0, double z1)
+{
+  if (!(R > 0.0) || y0 >= R || z0 >= R || y1 <= -R || z1 <= -R) return 0.0;
+  const double a = disk_quadrant_area(R, y1, z1) - disk_quadrant_area(R, y0, z1) - disk_quadrant_area(R, y1, z0) +
+                   disk_quadrant_area(R, y0, z0);
+  return std::max(0.0, a);
+}
+
+}  // namespace
+
+double disk_quadrant_area(double R, double b, double c)
+{
+  if (!(R > 0.0) || b <= -R || c <= -R) return 0.0;
+  b = std::min(b, R);
+  c = std::min(c, R);
+  const double yc = std::sqrt(std::max(0.0, (R - c) * (R + c)));  // where the chord z = c meets the circle
+  if (c >= 0.0) {
+    // z-extent at y: 2 s(y) for |y| >= yc, c + s(y) inside
+    double area = 2.0 * (circle_primitive(R, std::min(b, -yc)) - circle_primitive(R, -R));
+    if (b > -yc) {
+      const double yb = std::min(b, yc);
+      area += c * (yb + yc) + circle_primitive(R, yb) - circle_primitive(R, -yc);
+    }
+    if (b > yc) area += 2.0 * (circle_primitive(R, b) - circle_primitive(R, yc));
+    return area;
+  }
+  // c < 0: only |y| < yc has z-extent c + s(y) > 0
+  if (b <= -yc) return 0.0;
+  const double yb = std::min(b, yc);
+  return std::max(0.0, c * (yb + yc) + circle_primitive(R, yb) - circle_primitive(R, -yc));
+}
+
+double sphere_box_overlap(const Eigen::Vector3d &c, double r, const Eigen::Vector3d &lo, const Eigen::Vector3d &hi)
+{
+  double volume;
+  if (trivial_overlap(c, r, lo, hi, volume)) return volume;
+  AxisTerms ax[3];
+  for (int d = 0; d < 3; ++d) ax[d] = axis_terms(clamp_offset(lo[d] - c[d], r), clamp_offset(hi[d] - c[d], r), r);
+  volume = 0.0;
+  for (int i = 0; i < ax[0].n; ++i)
+    for (int j = 0; j < ax[1].n; ++j)
+      for (int k = 0; k < ax[2].n; ++k)
+        volume += ax[0].sign[i] * ax[1].sign[j] * ax[2].sign[k] * upper_corner(r, ax[0].t[i], ax[1].t[j], ax[2].t[k]);
+  return std::max(0.0, volume);
+}
+
+double sphere_box_overlap_quadrature(const Eigen::Vector3d &c, double r, const Eigen::Vector3d &lo,
+                                     const Eigen::Vector3d &hi)
+{
+  double trivial;
+  if (trivial_overlap(c, r, lo, hi, trivial)) return trivial;
+
+  const double xa = std::max(lo.x(), c.x() - r), xb = std::min(hi.x(), c.x() + r);
+  if (!(xb > xa)) return 0.0;
+  const double y0 = lo.y() - c.y(), y1 = hi.y() - c.y(), z0 = lo.z() - c.z(), z1 = hi.z() - c.z();
+
+  // kinks of A(x): slice radius rho(x) equal to an edge distance or a corner distance
+  double cuts[2 + 2 * 8];
+  int nc = 0;
+  cuts[nc++] = xa;
+  cuts[nc++] = xb;
+  const double d2[8] = {y0 * y0,           y1 * y1,           z0 * z0,           z1 * z1,
+                        y0 * y0 + z0 * z0, y0 * y0 + z1 * z1, y1 * y1 + z0 * z0, y1 * y1 + z1 * z1};
+  for (double d : d2) {
+    if (d >= r * r) continue;
+    const double h = std::sqrt(r * r - d);  // kink position: rho(x) = sqrt(d)
+    for (double x : {c.x() - h, c.x() + h})
+      if (x > xa && x < xb) cuts[nc++] = x;
+  }
+  std::sort(cuts, cuts + nc);
+
+  // between kinks A is analytic in u under x = a + (b-a)(1 - cos(pi u))/2, but a slice circle
+  // that just clears an edge puts its singularities near the real axis: bisect adaptively
+  double volume = 0.0;
+  const double tol = 1e-14 * r * r * r;
+  for (int s = 0; s + 1 < nc; ++s) {
+    const double a = cuts[s], b = cuts[s + 1];
+    if (!(b > a)) continue;
+    auto slice = [&](double u) {
+      const double x = a + (b - a) * 0.5 * (1.0 - std::cos(M_PI * u));
+      const double jac = (b - a) * 0.5 * M_PI * std::sin(M_PI * u);
+      const double dx = x - c.x();
+      const double rho = std::sqrt(std::max(0.0, (r - dx) * (r + dx)));
+      return jac * disk_rectangle_area(rho, y0, y1, z0, z1);
+    };
+    volume += adaptive_gauss(slice, 0.0, 1.0, gauss_rule(slice, 0.0, 1.0), tol, 0);
+  }
+  return volume;
+}
+
+// ---- lattice of shared planes --------------------------------------------------------
+void SphereBoxOverlaps::reset(const Eigen::Vector3d &c, double r, const std::vector<Eigen::Vector3d> &lo,
+                              const std::vector<Eigen::Vector3d> &hi)
+{
+  c_ = c;
+  r_ = r;
+  lo_ = &lo;
+  hi_ = &hi;
+  for (int a = 0; a < 3; ++a) {
+    auto &p = planes_[a];
+    p.assign(1, kFree);
+    for (std::size_t i = 0; i < lo.size(); ++i) {
+      p.push_back(std::abs(clamp_offset(lo[i][a] - c[a], r)));
+      p.push_back(std::abs(clamp_offset(hi[i][a] - c[a], r)));
+    }
+    std::sort(p.begin(), p.end());
+    p.erase(std::unique(p.begin(), p.end()), p.end());
+  }
+  corner_.assign(planes_[0].size() * planes_[1].size() * planes_[2].size(), std::numeric_limits<double>::quiet_NaN());
+}
+
+int SphereBoxOverlaps::index(int axis, double offset) const
+{
+  const auto &p = planes_[axis];
+  return int(std::lower_bound(p.begin(), p.end(), offset) - p.begin());
+}
+
+double SphereBoxOverlaps::corner(int i, int j, int k)
+{
+  double &u = corner_[(std::size_t(k) * planes_[1].size() + j) * planes_[0].size() + i];
+  if (std::isnan(u)) u = upper_corner(r_, planes_[0][i], planes_[1][j], planes_[2][k]);
+  return u;
+}
+
+double SphereBoxOverlaps::volume(std::size_t b)
+{
+  const Eigen::Vector3d &lo = (*lo_)[b], &hi = (*hi_)[b];
+  double v;
+  if (trivial_overlap(c_, r_, lo, hi, v)) return v;
+  AxisTerms ax[3];
+  int idx[3][3];
+  for (int d = 0; d < 3; ++d) {
+    ax[d] = axis_terms(clamp_offset(lo[d] - c_[d], r_), clamp_offset(hi[d] - c_[d], r_), r_);
+    for (int t = 0; t < ax[d].n; ++t) idx[d][t] = index(d, ax[d].t[t]);
+  }
+  v = 0.0;
+  for (int i = 0; i < ax[0].n; ++i)
+    for (int j = 0; j < ax[1].n; ++j)
+      for (int k = 0; k < ax[2].n; ++k)
+        v += ax[0].sign[i] * ax[1].sign[j] * ax[2].sign[k] * corner(idx[0][i], idx[1][j], idx[2][k]);
+  return std::max(0.0, v);
+}
+
+}  // namespace meltdem::coupling
