@@ -33,6 +33,20 @@ double ranz_marshall_k_nu(const FluidState &fluid, double Re)
   return fluid.k * ranz_marshall_nusselt(Re, prandtl_number(fluid.cp, fluid.mu, fluid.k));
 }
 
+namespace {
+
+// a step that changes nothing yet: the particle as it is, its enthalpy capped at melting
+MeltStepResult unchanged(double h, double m, double d, double hm)
+{
+  MeltStepResult r;
+  r.h = std::min(h, hm);
+  r.m = m;
+  r.d = d;
+  return r;
+}
+
+}  // namespace
+
 MeltStepResult heat_melt_step(const MeltMaterial &mat, double h, double m, double d, double k_nu, double T_fluid,
                               double dt)
 {
@@ -41,10 +55,7 @@ MeltStepResult heat_melt_step(const MeltMaterial &mat, double h, double m, doubl
   if (!(k_nu >= 0.0) || !(dt >= 0.0)) throw std::invalid_argument("heat_melt_step needs k Nu >= 0, dt >= 0");
 
   const double hm = mat.cp * mat.Tmelt;
-  MeltStepResult r;
-  r.h = std::min(h, hm);
-  r.m = m;
-  r.d = d;
+  MeltStepResult r = unchanged(h, m, d, hm);
   if (k_nu == 0.0 || dt == 0.0) return r;
 
   const double G = k_nu * M_PI * d;  // h_conv A [W/K]
@@ -105,10 +116,7 @@ MeltStepResult heat_melt_step_two_body(const MeltMaterial &mat, double h, double
   if (!std::isfinite(C_fluid)) throw std::invalid_argument("heat_melt_step needs a finite fluid heat capacity");
 
   const double hm = mat.cp * mat.Tmelt;
-  MeltStepResult r;
-  r.h = std::min(h, hm);
-  r.m = m;
-  r.d = d;
+  MeltStepResult r = unchanged(h, m, d, hm);
   r.T_fluid = T_fluid;
   if (k_nu == 0.0 || dt == 0.0) return r;
 
@@ -181,10 +189,7 @@ MeltStepResult absorb_heat(const MeltMaterial &mat, double h, double m, double d
   if (!(m > 0.0) || !(d > 0.0)) throw std::invalid_argument("absorb_heat needs m > 0, d > 0");
   if (!(energy >= 0.0)) throw std::invalid_argument("absorb_heat needs energy >= 0");
   const double hm = mat.cp * mat.Tmelt;
-  MeltStepResult r;
-  r.h = std::min(h, hm);
-  r.m = m;
-  r.d = d;
+  MeltStepResult r = unchanged(h, m, d, hm);
   r.heat = energy;
   const double sensible = std::min(energy, m * (hm - r.h));
   r.h += sensible / m;

@@ -6,9 +6,7 @@
 #include "validation_report.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
-#include <iostream>
 #include <random>
 #include <string>
 #include <vector>
@@ -138,37 +136,4 @@ TEST(SphereBoxOverlap, SharedPlanesEqualSingleBoxes)
   }
   expect_absolute("0.5-10 cells/d: max |lattice - single box| / r^3", worst_cell, 0.0, 1e-14);
   expect_absolute("0.5-10 cells/d: max |sum over cells / sphere - 1|", worst_sum, 0.0, 1e-14);
-}
-
-TEST(SphereBoxOverlap, CostNote)
-{
-  // not a benchmark: the order of magnitude of both paths (no assertion on time)
-  for (double cells_per_d : {1.0, 2.0, 4.0, 8.0}) {
-    const double r = 1.0, h = 2.0 * r / cells_per_d;
-    const int n = std::max(4, int(std::ceil(8.0 * r / h)));
-    const auto mesh = CartesianGridMesh::uniform(Vector3d::Zero(), Vector3d::Constant(n * h), n, n, n);
-    std::mt19937_64 rng(3);
-    std::uniform_real_distribution<double> u(0.4 * n * h, 0.6 * n * h);
-    std::vector<CellWeight> w;
-    const int np = 400;
-    std::vector<Vector3d> centres(np);
-    for (auto &c : centres) c = Vector3d(u(rng), u(rng), u(rng));
-    auto t0 = std::chrono::steady_clock::now();
-    for (const Vector3d &c : centres) distribute_particle(mesh, DistributionModel::Overlap, c, r, w);
-    const double closed = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
-    t0 = std::chrono::steady_clock::now();
-    std::vector<long> cells;
-    for (int p = 0; p < np / 10; ++p) {
-      cells.clear();
-      mesh.cells_in_sphere(centres[p], r, cells);
-      for (long cell : cells) {
-        Vector3d lo, hi;
-        mesh.cell_bounds(cell, lo, hi);
-        sphere_box_overlap_quadrature(centres[p], r, lo, hi);
-      }
-    }
-    const double quad = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
-    std::cout << "NOTE overlap @ " << cells_per_d << " cells/d: closed form " << closed / np
-              << " us/particle, quadrature " << quad / (np / 10) << " us/particle" << std::endl;
-  }
 }
