@@ -266,6 +266,17 @@ for m in models:
         us = [r["exchange"] * ms * 1e3 / r["particles"] for r in rm]
         lines.append(f"`{m}`: exchange share {lo:.2f}–{hi:.2f} %, {min(us):.2f}–{max(us):.2f} µs per particle "
                      f"and fluid step (rank 0).")
+# overlap against centre, per particle, in the same scenario and rank count (targets: overlap at most
+# 2x centre's per-particle cost, and at most 10 % of the coupled step)
+OVERLAP_COST_TARGET, OVERLAP_SHARE_TARGET = 2.0, 10.0
+for r in [r for r in results if r["model"] == "overlap"]:
+    c = [q for q in results if q["model"] == "centre" and q["scenario"] == r["scenario"] and q["np"] == r["np"]]
+    if c:
+        ratio = r["exchange"] / c[0]["exchange"]
+        lines.append(f"`overlap` / `centre` exchange cost, {r['scenario']} np {r['np']}: {ratio:.2f} "
+                     f"(target ≤ {OVERLAP_COST_TARGET:g}: {'met' if ratio <= OVERLAP_COST_TARGET else 'MISSED'}); "
+                     f"`overlap` share {r['share_ex']:.1f} % (target ≤ {OVERLAP_SHARE_TARGET:g} %: "
+                     f"{'met' if r['share_ex'] <= OVERLAP_SHARE_TARGET else 'MISSED'}).")
 if missed:
     worst = max(missed, key=lambda r: r["share_ex"])
     dom = max((("exchange", worst["share_ex"]), ("LAMMPS", worst["share_lmp"]), ("fluid + rest", worst["share_rest"])),

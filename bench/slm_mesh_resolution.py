@@ -62,6 +62,7 @@ def main():
                     f"failed: {str(e).splitlines()[0][:100]}"
                 s = dict(status=why, wall_s=time.time() - t, cell_m=h)
             s["gas_cp"] = a.gas_cp
+            s["fluid_dt_s"] = a.fluid_dt
             results[f"{a.gas_cp:g}/{h:.4g}"] = s
             json.dump(results, open(res_path, "w"), indent=1)
     write(results, a.np, a.out)
@@ -69,20 +70,21 @@ def main():
         sys.exit(1)
 
 
-READING = """Reading (measured 2026-11-25): with argon's heat capacity (the scene's default) only the 37.5 and
-30 um meshes run; at 20 and 15 um the grains' explicit heat exchange with gas cells of small heat
-capacity outruns the 1 us fluid step and the solver's bound check stops the run within the first
-steps, naming the knobs (smaller fluid step, coarser cells). With the gas heat capacity raised to
-1e5 J/kg/K (a numerical gas; `--gas-cp`) all four run: the width converges at 20 um (within 1 % of
-15 um) for 1.5x the CPU of 30 um, and 15 um costs 3x; the -17 % left against the conduction
-estimate is physics the estimate leaves out (the powder's sensible and latent heat, the substrate's
-latent heat). The raised gas cp itself narrows the 30 um track by 10 % (87.1 vs 96.5 um). The depth
-falls with refinement (26.7 -> 17.5 um): on coarse meshes the melted boundary sits on a cell face.
-Pick 30 um for a quick look (width within ~20 % of converged, 30 s CPU for this case) and 20 um
-for the width (1 %). Runs on the solver builds of 12:29-12:50 (1 us fluid steps, gas viscosity
-lowered to 1e-8 Pa s as the scene had it before the solver's two-body drag); on the 13:13 build
-the 30 um / gas cp 1e5 point gives 86.8 um (87.1 here), while 30 um with argon's cp needs a 0.5 us
-fluid step (the scene's default now: 96.8 um, 55 s CPU)."""
+READING = """Reading (measured 2026-12-02, the two-body exchange): with argon's real heat capacity and
+viscosity every mesh from 30 to 10 um runs, at a fluid step of 0.1 h per m/s (3, 2, 1.5, 1 us),
+where the explicit exchange stopped at 20 and 15 um even at 1 us (the table of 2026-11-25). The
+width: 95.3, 114.0, 107.4, 113.4 um at 30, 20, 15, 10 um; 10 um equals the 113.5 um of a 0.5 us
+step (the issue's run), so the step does not set the width. It does not yet converge
+monotonically (20 um lies 0.5 % above 10 um, 15 um 5 % below). The fixed step overrides the
+Courant limit: the largest cell Courant number reached 2.0, 4.3, 9.3, 16 at 30-10 um (gas at the
+pool; the interface Courant number stayed below 1), and at 7.5 um a 0.75 us step let the flow
+diverge (Courant 85, alpha.metal -1.4e-3, the bound check stopped it at 0.355 ms); the 7.5 um row
+is at 0.5 us. A Courant-limited step with the DEM sub-cycles recomputed per step is what the
+scenes need next."""
+
+
+def step_us(s):
+    return f"{s['fluid_dt_s'] * 1e6:g}" if s.get("fluid_dt_s") else ""
 
 
 def cpu(s):
@@ -99,7 +101,7 @@ def write(results, np_, out):
     ref = allok[0] if allok else None
     lines = ["# SLM track: mesh resolution vs track width", "",
              "`bench/slm_mesh_resolution.py` (examples/slm-track CI floor 0.3 x 0.3 mm, 153 grains, "
-             "0.2 mm of track at 0.5 m/s, 100 W, 0.1 mm spot, eta 0.5; overlap distribution; fluid step 1 us; "
+             "0.2 mm of track at 0.5 m/s, 100 W, 0.1 mm spot, eta 0.5; overlap distribution; fluid step per row; "
              f"{np_} rank(s); CPU = the solver's ExecutionTime (LAMMPS included), wall on a shared 2-core machine "
              "with load 8-10, so wall times are 2.5-4x the CPU times and noisy). Width and depth of the melted "
              "region (peak T above the "
@@ -107,10 +109,10 @@ def write(results, np_, out):
              "conduction-only melt width of the same eta P, v and Gaussian spot on bare SS304"
              + (f" ({ref['gaussian_width_m'] * 1e6:.1f} um; Rosenthal point source "
                 f"{ref['rosenthal_width_m'] * 1e6:.1f} um)." if ref else "."), "",
-             "| gas cp [J/kg/K] | cell [um] | cells | spot radius / cell | width [um] | depth [um] | "
+             "| gas cp [J/kg/K] | cell [um] | fluid step [us] | cells | spot radius / cell | width [um] | depth [um] | "
              "bead height [um] | width error vs finest | width error vs conduction estimate | CPU [s] | wall [s] | "
              "status |",
-             "|---|---|---|---|---|---|---|---|---|---|---|---|"]
+             "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     fig, ax = plt.subplots(1, 2, figsize=(11, 4.2))
     for cp in series:
         rows = sorted([s for s in results.values() if s.get("gas_cp", 520.0) == cp], key=lambda s: -s["cell_m"])
@@ -119,12 +121,14 @@ def write(results, np_, out):
         for s in rows:
             h = s["cell_m"]
             if s.get("status") != "ok":
-                lines.append(f"| {cp:g} | {h * 1e6:g} | | {50e-6 / h:.2f} | | | | | | | {s['wall_s']:.0f} | "
+                lines.append(f"| {cp:g} | {h * 1e6:g} | {step_us(s)} | | {50e-6 / h:.2f} | | | | | | | "
+                             f"{s['wall_s']:.0f} | "
                              f"{s['status']} |")
                 continue
             ef = (s["track_width_m"] - finest["track_width_m"]) / finest["track_width_m"]
             ea = (s["track_width_m"] - s["gaussian_width_m"]) / s["gaussian_width_m"]
-            lines.append(f"| {cp:g} | {h * 1e6:g} | {s['cells']} | {50e-6 / h:.2f} | {s['track_width_m'] * 1e6:.1f} | "
+            lines.append(f"| {cp:g} | {h * 1e6:g} | {step_us(s)} | {s['cells']} | {50e-6 / h:.2f} | "
+                         f"{s['track_width_m'] * 1e6:.1f} | "
                          f"{s['track_depth_m'] * 1e6:.1f} | {s['bead_height_m'] * 1e6:.1f} | "
                          f"{ef * 100:+.1f} % | {ea * 100:+.1f} % | {cpu(s)} | {s['wall_s']:.0f} | ok |")
         if not ok:
