@@ -73,14 +73,14 @@ def main():
 READING = """Reading (measured 2026-12-02, the two-body exchange): with argon's real heat capacity and
 viscosity every mesh from 30 to 10 um runs, at a fluid step of 0.1 h per m/s (3, 2, 1.5, 1 us),
 where the explicit exchange stopped at 20 and 15 um even at 1 us (the table of 2026-11-25). The
-width: 95.3, 114.0, 107.4, 113.4 um at 30, 20, 15, 10 um; 10 um equals the 113.5 um of a 0.5 us
-step (the issue's run), so the step does not set the width. It does not yet converge
-monotonically (20 um lies 0.5 % above 10 um, 15 um 5 % below). The fixed step overrides the
+width: 95.3, 114.0, 107.4, 113.4, 122.6 um at 30, 20, 15, 10, 7.5 um; 10 um equals the 113.5 um
+of a 0.5 us step (the issue's run), so the step does not set the width. It does not converge:
+7.5 um lies 8 % above 10 um, and 15 um 5 % below it. The fixed step overrides the
 Courant limit: the largest cell Courant number reached 2.0, 4.3, 9.3, 16 at 30-10 um (gas at the
 pool; the interface Courant number stayed below 1), and at 7.5 um a 0.75 us step let the flow
 diverge (Courant 85, alpha.metal -1.4e-3, the bound check stopped it at 0.355 ms); the 7.5 um row
-is at 0.5 us. A Courant-limited step with the DEM sub-cycles recomputed per step is what the
-scenes need next."""
+is at 0.5 us (largest cell Courant number 4.4, CPU 685 s). A Courant-limited step with the DEM
+sub-cycles recomputed per step is what the scenes need next."""
 
 
 def step_us(s):
@@ -103,8 +103,8 @@ def write(results, np_, out):
              "`bench/slm_mesh_resolution.py` (examples/slm-track CI floor 0.3 x 0.3 mm, 153 grains, "
              "0.2 mm of track at 0.5 m/s, 100 W, 0.1 mm spot, eta 0.5; overlap distribution; fluid step per row; "
              f"{np_} rank(s); CPU = the solver's ExecutionTime (LAMMPS included), wall on a shared 2-core machine "
-             "with load 8-10, so wall times are 2.5-4x the CPU times and noisy). Width and depth of the melted "
-             "region (peak T above the "
+             "with other runs alongside, so wall times exceed the CPU times and are noisy). Width and depth of "
+             "the melted region (peak T above the "
              "middle of the melting range; median over the x-slices of the middle of the track). Reference: the "
              "conduction-only melt width of the same eta P, v and Gaussian spot on bare SS304"
              + (f" ({ref['gaussian_width_m'] * 1e6:.1f} um; Rosenthal point source "
