@@ -278,27 +278,24 @@ def time_dirs(case):
     return [d for _, d in sorted(out)]
 
 
-def smooth_alpha_disc(grid, xc, yc, r, width=None, nsub=8):
-    """Volume fraction of a disc of radius r by sub-sampling each cell (nsub^2 points)."""
+def subsampled_fraction(grid, inside, nsub=8):
+    """Fraction of each cell where inside(x, y) holds, from nsub^2 points per cell."""
     s = (np.arange(nsub) + 0.5) / nsub - 0.5
     a = np.zeros(grid.x.size)
     for sx in s:
         for sy in s:
-            px = grid.x + sx * grid.dx
-            py = grid.y + sy * grid.dy
-            a += ((px - xc) ** 2 + (py - yc) ** 2 <= r * r)
+            a += inside(grid.x + sx * grid.dx, grid.y + sy * grid.dy)
     return a / nsub ** 2
+
+
+def smooth_alpha_disc(grid, xc, yc, r, width=None, nsub=8):
+    """Volume fraction of a disc of radius r by sub-sampling each cell (nsub^2 points)."""
+    return subsampled_fraction(grid, lambda px, py: (px - xc) ** 2 + (py - yc) ** 2 <= r * r, nsub)
 
 
 def alpha_rect(grid, x0, x1, y0, y1, nsub=8):
-    s = (np.arange(nsub) + 0.5) / nsub - 0.5
-    a = np.zeros(grid.x.size)
-    for sx in s:
-        for sy in s:
-            px = grid.x + sx * grid.dx
-            py = grid.y + sy * grid.dy
-            a += (px >= x0) & (px <= x1) & (py >= y0) & (py <= y1)
-    return a / nsub ** 2
+    """Volume fraction of the rectangle [x0, x1] x [y0, y1] by sub-sampling each cell."""
+    return subsampled_fraction(grid, lambda px, py: (px >= x0) & (px <= x1) & (py >= y0) & (py <= y1), nsub)
 
 
 # Fuchs2022 tables 1-3 (stainless steel near Tm = 1700 K, atmospheric gas scaled as there)
