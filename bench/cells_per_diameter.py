@@ -35,14 +35,12 @@ Results, each the mean over the last 10 % of the run (the same window in every r
   * heat rate into the grain (fix powder/melt f_melt[6] per time) vs the reference;
   * the coldest and hottest gas of the run (below the grain's 300 K or above the 1000 K gas:
     the explicit exchange overshoots, the onset of the instability that crashes `centre`).
-Stability: the heat exchange is explicit (the gas state is frozen over the fluid step), so a
-fluid step longer than the heat exchange time of the cells a grain deposits into, rho cp
-V_deposit / (h A) (~ d^2 / (12 alpha) = 5.6e-7 s here once the deposit is the grain's own
-volume), drives the gas beyond the grain's temperature. meltdemFoam's bound check
-(particleCoupling::checkBounded) then stops at once and names that time: the run is then
-repeated at half of it, if it costs at most --max-steps steps and an estimated --max-run
-seconds; otherwise its cost is estimated (start-up + cells x steps x the cost per
-cell-step of the largest run so far) and it is listed as not run. The step a fine mesh needs is part of its cost.
+Stability: the exchange is a two-body relaxation of the grain and its share of its cells
+(doc/foam_particle_coupling.rst), so no fluid step drives the gas beyond the grain's
+temperature; should meltdemFoam's bound check (temperatureBounds) still stop a run, it names the
+cells' exchange time and the run is repeated at half of it, if it costs at most --max-steps steps
+and an estimated --max-run seconds; otherwise its cost is estimated (start-up + cells x steps x
+the cost per cell-step of the largest run so far) and it is listed as not run.
 Reference: the same LAMMPS input run standalone with the uniform undisturbed gas
 (`fix powder/melt ... ambient 1000 0.18 0.12 1.8e-4 1000 0 0 0`), i.e. the drag and
 Ranz-Marshall laws at the far-field gas state (the analytic Stokes drag 3 pi mu d v and

@@ -12,7 +12,8 @@ Foam::meltdem::temperatureBounds::temperatureBounds(const fvMesh& mesh, MPI_Comm
     Thi_(0),
     exchangeTime_(GREAT),
     set_(false),
-    heated_(false)
+    heated_(false),
+    warnedLongStep_(false)
 {}
 
 
@@ -25,6 +26,20 @@ void Foam::meltdem::temperatureBounds::start
 )
 {
     exchangeTime_ = exchangeTime;
+    const scalar dt = mesh_.time().deltaTValue();
+    if (!warnedLongStep_ && dt > exchangeTime_)
+    {
+        // the two-body exchange stays bounded, but a parcel that empties within the step
+        // delivers about C/(G dt) of the rate the unbounded fluid would
+        WarningInFunction
+            << "the fluid step " << dt << " s is longer than the worst cell's heat capacity "
+            << "over its particles' conductance, C/G = " << exchangeTime_ << " s: the exchange "
+            << "stays bounded, but those particles take at most what their cells hold per step, "
+            << "about C/(G dt) = " << exchangeTime_/dt << " of the rate of an unbounded fluid. "
+            << "For the rate, lower maxDeltaT (controlDict) or demStepsPerFluidStep towards "
+            << "C/G. (Warned once per run.)" << endl;
+        warnedLongStep_ = true;
+    }
     Tlo_ = min(returnReduce(Tplo, minOp<scalar>()), min(T).value());
     Thi_ = max(returnReduce(Tphi, maxOp<scalar>()), max(T).value());
     set_ = true;
