@@ -102,6 +102,17 @@ AxisTerms axis_terms(double lo, double hi, double R)
   return a;
 }
 
+// |sphere ∩ box| as the signed sum of corner volumes over the three axes' terms, clipped at 0
+// (round-off); corner(i, j, k) gives U at term i of x, j of y, k of z
+template <class Corner> double alternating_sum(const AxisTerms ax[3], const Corner &corner)
+{
+  double v = 0.0;
+  for (int i = 0; i < ax[0].n; ++i)
+    for (int j = 0; j < ax[1].n; ++j)
+      for (int k = 0; k < ax[2].n; ++k) v += ax[0].sign[i] * ax[1].sign[j] * ax[2].sign[k] * corner(i, j, k);
+  return std::max(0.0, v);
+}
+
 // the shortcuts shared by both paths; returns false when the box needs the full evaluation
 bool trivial_overlap(const Eigen::Vector3d &c, double r, const Eigen::Vector3d &lo, const Eigen::Vector3d &hi,
                      double &volume)
@@ -229,12 +240,7 @@ double sphere_box_overlap(const Eigen::Vector3d &c, double r, const Eigen::Vecto
   if (trivial_overlap(c, r, lo, hi, volume)) return volume;
   AxisTerms ax[3];
   for (int d = 0; d < 3; ++d) ax[d] = axis_terms(clamp_offset(lo[d] - c[d], r), clamp_offset(hi[d] - c[d], r), r);
-  volume = 0.0;
-  for (int i = 0; i < ax[0].n; ++i)
-    for (int j = 0; j < ax[1].n; ++j)
-      for (int k = 0; k < ax[2].n; ++k)
-        volume += ax[0].sign[i] * ax[1].sign[j] * ax[2].sign[k] * upper_corner(r, ax[0].t[i], ax[1].t[j], ax[2].t[k]);
-  return std::max(0.0, volume);
+  return alternating_sum(ax, [&](int i, int j, int k) { return upper_corner(r, ax[0].t[i], ax[1].t[j], ax[2].t[k]); });
 }
 
 double sphere_box_overlap_quadrature(const Eigen::Vector3d &c, double r, const Eigen::Vector3d &lo,
@@ -326,12 +332,7 @@ double SphereBoxOverlaps::volume(std::size_t b)
     ax[d] = axis_terms(clamp_offset(lo[d] - c_[d], r_), clamp_offset(hi[d] - c_[d], r_), r_);
     for (int t = 0; t < ax[d].n; ++t) idx[d][t] = index(d, ax[d].t[t]);
   }
-  v = 0.0;
-  for (int i = 0; i < ax[0].n; ++i)
-    for (int j = 0; j < ax[1].n; ++j)
-      for (int k = 0; k < ax[2].n; ++k)
-        v += ax[0].sign[i] * ax[1].sign[j] * ax[2].sign[k] * corner(idx[0][i], idx[1][j], idx[2][k]);
-  return std::max(0.0, v);
+  return alternating_sum(ax, [&](int i, int j, int k) { return corner(idx[0][i], idx[1][j], idx[2][k]); });
 }
 
 }  // namespace meltdem::coupling
