@@ -126,14 +126,16 @@ void ParallelExchange::locate(const std::vector<ParticleShape> &local)
   // its size (G ~ k Nu d), so a shrinking remnant keeps enough of a cell to melt away (every
   // rank holds every particle's weights over its own cells, so the per-cell sums are complete)
   share_.assign(cells_.size(), 0.0);
-  std::unordered_map<long, double> claimed;
+  const long ncells = cells_.empty() ? 0 : *std::max_element(cells_.begin(), cells_.end()) + 1;
+  if (claimed_.size() < std::size_t(ncells)) claimed_.resize(std::size_t(ncells), 0.0);  // zero between calls
   for (std::size_t g = 0; g < n; ++g)
     for (std::size_t k = start_[g]; k < start_[g + 1]; ++k) {
       share_[k] = weights_[k] * all_[g].radius;
-      claimed[cells_[k]] += share_[k];
+      claimed_[std::size_t(cells_[k])] += share_[k];
     }
   for (std::size_t k = 0; k < cells_.size(); ++k)
-    if (share_[k] > 0.0) share_[k] /= claimed[cells_[k]];
+    if (share_[k] > 0.0) share_[k] /= claimed_[std::size_t(cells_[k])];
+  for (const long c : cells_) claimed_[std::size_t(c)] = 0.0;
 }
 
 void ParallelExchange::sample_global(const CellFluidFields &f, std::vector<SampledFluid> &out) const
@@ -198,14 +200,23 @@ void ParallelExchange::deposit_taken(const std::vector<std::int64_t> &ids, const
   std::vector<double> gathered;
   std::vector<int> counts, displs;
   allgather_doubles(mine, kIn, comm_, gathered, counts, displs);
-  std::unordered_map<std::int64_t, std::size_t> entry;
-  for (std::size_t k = 0; kIn * k < gathered.size(); ++k) entry[std::int64_t(gathered[kIn * k])] = k;
-  const std::size_t n = all_.size();
+  const std::size_t n = all_.size(), ngathered = gathered.size() / kIn;
   std::vector<double> all(kOut * n, 0.0);
-  for (std::size_t g = 0; g < n; ++g) {
-    const auto it = entry.find(all_[g].id);
-    if (it == entry.end()) continue;
-    for (int q = 0; q < kOut; ++q) all[kOut * g + q] = gathered[kIn * it->second + 1 + q];
+  // usually the reports come in the order the particles were located: look them up by id
+  // only where they do not
+  bool same_order = ngathered == n;
+  for (std::size_t g = 0; g < n && same_order; ++g) same_order = std::int64_t(gathered[kIn * g]) == all_[g].id;
+  if (same_order) {
+    for (std::size_t g = 0; g < n; ++g)
+      for (int q = 0; q < kOut; ++q) all[kOut * g + q] = gathered[kIn * g + 1 + q];
+  } else {
+    std::unordered_map<std::int64_t, std::size_t> entry;
+    for (std::size_t k = 0; k < ngathered; ++k) entry[std::int64_t(gathered[kIn * k])] = k;
+    for (std::size_t g = 0; g < n; ++g) {
+      const auto it = entry.find(all_[g].id);
+      if (it == entry.end()) continue;
+      for (int q = 0; q < kOut; ++q) all[kOut * g + q] = gathered[kIn * it->second + 1 + q];
+    }
   }
   // the heat a cell can give particle g before it reaches the particle's temperature: g's
   // share of the cell's capacity times the cell's temperature difference to the particle, in

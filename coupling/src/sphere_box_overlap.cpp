@@ -13,10 +13,35 @@ namespace {
 
 constexpr double kFree = -1.0;  // folded offset of an axis without a constraint
 
-// ∫_0^x sqrt(S^2 - t^2) dt, given w = sqrt(S^2 - x^2)
-double circle_integral(double S2, double x, double w)
+// atan(t) for 0 <= t <= 1 (Cephes atan: range reduction at tan(pi/8) and a 4/5 rational
+// approximation, peak relative error 1.8e-16): several times faster than glibc's
+// correctly rounded atan2, which dominated the overlap's cost
+double atan_unit(double t)
 {
-  return 0.5 * (x * w + S2 * std::atan2(x, w));
+  static constexpr double P[] = {-8.750608600031904122785e-1, -1.615753718733365076637e1, -7.500855792314704667340e1,
+                                 -1.228866684490136173410e2, -6.485021904942025371773e1};
+  static constexpr double Q[] = {2.485846490142306297962e1, 1.650270098316988542046e2, 4.328810604912902668951e2,
+                                 4.853903996359136964868e2, 1.945506571482613964425e2};
+  static constexpr double kMoreBits = 6.123233995736765886130e-17;  // pi/4 - its double
+  double y = 0.0, corr = 0.0;
+  if (t > 0.66) {
+    y = M_PI / 4.0;
+    corr = 0.5 * kMoreBits;
+    t = (t - 1.0) / (t + 1.0);
+  }
+  const double z = t * t;
+  const double p = (((P[0] * z + P[1]) * z + P[2]) * z + P[3]) * z + P[4];
+  const double q = ((((z + Q[0]) * z + Q[1]) * z + Q[2]) * z + Q[3]) * z + Q[4];
+  return y + (t * z * p / q + t + corr);
+}
+
+// atan2(y, x) for y, x >= 0 (every angle of the closed form lies in the first quadrant)
+double atan2_first_quadrant(double y, double x)
+{
+  if (!(y >= 0.0 && x >= 0.0) || !std::isfinite(y) || !std::isfinite(x)) return std::atan2(y, x);
+  if (y == 0.0) return 0.0;
+  if (y <= x) return atan_unit(y / x);
+  return M_PI / 2.0 + (6.123233995736765886130e-17 - atan_unit(x / y));  // the bits pi/2 lacks
 }
 
 // The part of F(x) that one cutting plane (at offset c >= 0, y or z) contributes:
@@ -28,9 +53,11 @@ double plane_part(double R, double c, double x, double w)
   if (c == 0.0 || x == 0.0) return 0.0;  // every term carries x or c
   const double S2 = (R - c) * (R + c);
   const double v = R * R * x - x * x * x / 3.0;
-  const double rest = c * ((S2 / 6.0 - 2.0 * R * R / 3.0) * std::atan2(x, w) - x * w / 6.0) +
-                      2.0 * R * R * R / 3.0 * std::atan2(x * c, R * w);
-  return -0.5 * (v * std::atan2(c, w) - rest) - 0.5 * c * circle_integral(S2, x, w);
+  // atan2(x, w) is shared by the remainder and ∫_0^x sqrt(S2 - t^2) dt = (x w + S2 atan2(x, w)) / 2
+  const double angle = atan2_first_quadrant(x, w);
+  const double rest = c * ((S2 / 6.0 - 2.0 * R * R / 3.0) * angle - x * w / 6.0) +
+                      2.0 * R * R * R / 3.0 * atan2_first_quadrant(x * c, R * w);
+  return -0.5 * (v * atan2_first_quadrant(c, w) - rest) - 0.25 * c * (x * w + S2 * angle);
 }
 
 // F(x) = ∫_0^x A(t) dt, A the area of the disk of radius sqrt(R^2 - t^2) with y >= b, z >= c;
@@ -295,6 +322,23 @@ void SphereBoxOverlaps::reset(const Eigen::Vector3d &c, double r, const std::vec
   r_ = r;
   lo_ = &lo;
   hi_ = &hi;
+  // the planes strictly inside the sphere's extent: at most one per axis takes the octant path
+  octants_ = true;
+  for (int a = 0; a < 3 && octants_; ++a) {
+    bool found = false;
+    cut_[a] = -r;
+    for (std::size_t i = 0; i < lo.size() && octants_; ++i)
+      for (const double d : {lo[i][a] - c[a], hi[i][a] - c[a]}) {
+        if (!(d > -r && d < r)) continue;
+        if (found && d != cut_[a]) octants_ = false;
+        found = true;
+        cut_[a] = d;
+      }
+  }
+  if (octants_) {
+    octant_pieces();
+    return;
+  }
   for (int a = 0; a < 3; ++a) {
     auto &p = planes_[a];
     p.assign(1, kFree);
@@ -321,8 +365,73 @@ double SphereBoxOverlaps::corner(int i, int j, int k)
   return u;
 }
 
+void SphereBoxOverlaps::octant_pieces()
+{
+  // U at the folded offsets {free, |cut|} of the three axes, each evaluated once
+  double folded[3][2];
+  int nt[3];
+  for (int a = 0; a < 3; ++a) {
+    folded[a][0] = kFree;
+    folded[a][1] = std::abs(cut_[a]);
+    nt[a] = cut_[a] > -r_ ? 2 : 1;
+  }
+  double U[2][2][2] = {};
+  for (int i = 0; i < nt[0]; ++i)
+    for (int j = 0; j < nt[1]; ++j)
+      for (int k = 0; k < nt[2]; ++k) U[i][j][k] = upper_corner(r_, folded[0][i], folded[1][j], folded[2][k]);
+  // each side of a cut as signed terms over those offsets (the sphere is symmetric): above
+  // a >= 0 is {x >= a}; below it, everything minus that; mirrored for a < 0. Without a cut
+  // the whole axis counts as the side above
+  struct Side {
+    int n = 0, term[2] = {0, 0};
+    double sign[2] = {0.0, 0.0};
+  } side[3][2];
+  for (int a = 0; a < 3; ++a) {
+    if (nt[a] == 1) {
+      side[a][1] = Side{1, {0, 0}, {1.0, 0.0}};
+      continue;
+    }
+    const int near = cut_[a] >= 0.0 ? 1 : 0;  // the side that is the folded upper half-space
+    side[a][near] = Side{1, {1, 0}, {1.0, 0.0}};
+    side[a][1 - near] = Side{2, {0, 1}, {1.0, -1.0}};
+  }
+  for (int p = 0; p < 8; ++p) {
+    const Side &x = side[0][p & 1], &y = side[1][(p >> 1) & 1], &z = side[2][(p >> 2) & 1];
+    double v = 0.0;
+    for (int i = 0; i < x.n; ++i)
+      for (int j = 0; j < y.n; ++j)
+        for (int k = 0; k < z.n; ++k) v += x.sign[i] * y.sign[j] * z.sign[k] * U[x.term[i]][y.term[j]][z.term[k]];
+    piece_[p] = std::max(0.0, v);
+  }
+}
+
+double SphereBoxOverlaps::octant_volume(std::size_t b) const
+{
+  const Eigen::Vector3d &lo = (*lo_)[b], &hi = (*hi_)[b];
+  // the sides of each cut the box spans (both when it spans the cut, the upper when none cuts)
+  int sides[3][2], count[3];
+  for (int a = 0; a < 3; ++a) {
+    const double l = lo[a] - c_[a], h = hi[a] - c_[a];
+    count[a] = 0;
+    if (h <= -r_ || l >= r_) return 0.0;
+    if (cut_[a] <= -r_) {
+      sides[a][count[a]++] = 1;
+      continue;
+    }
+    if (l < cut_[a]) sides[a][count[a]++] = 0;
+    if (h > cut_[a]) sides[a][count[a]++] = 1;
+    if (count[a] == 0) return 0.0;
+  }
+  double v = 0.0;
+  for (int i = 0; i < count[0]; ++i)
+    for (int j = 0; j < count[1]; ++j)
+      for (int k = 0; k < count[2]; ++k) v += piece_[sides[0][i] | sides[1][j] << 1 | sides[2][k] << 2];
+  return v;
+}
+
 double SphereBoxOverlaps::volume(std::size_t b)
 {
+  if (octants_) return octant_volume(b);
   const Eigen::Vector3d &lo = (*lo_)[b], &hi = (*hi_)[b];
   double v;
   if (trivial_overlap(c_, r_, lo, hi, v)) return v;

@@ -2,6 +2,8 @@
 
 #include "Random.H"
 
+#include <algorithm>
+
 Foam::meltdem::foamDistributionMesh::foamDistributionMesh(const fvMesh& mesh)
 :
     mesh_(mesh),
@@ -21,6 +23,18 @@ Foam::meltdem::foamDistributionMesh::foamDistributionMesh(const fvMesh& mesh)
         }
     }
     reduce(boxCells_, andOp<bool>());
+    if (boxCells_)
+    {
+        std::vector<Eigen::Vector3d> lo(cellBoxes_.size()), hi(cellBoxes_.size());
+        forAll(cellBoxes_, celli)
+        {
+            const point& a = cellBoxes_[celli].min();
+            const point& b = cellBoxes_[celli].max();
+            lo[celli] = Eigen::Vector3d(a.x(), a.y(), a.z());
+            hi[celli] = Eigen::Vector3d(b.x(), b.y(), b.z());
+        }
+        lattice_.build(lo, hi);
+    }
 
     treeBoundBox overall(pts);
     Random rnd(261782);
@@ -40,6 +54,10 @@ Foam::meltdem::foamDistributionMesh::foamDistributionMesh(const fvMesh& mesh)
 
 long Foam::meltdem::foamDistributionMesh::find_cell(const Eigen::Vector3d& p) const
 {
+    if (!lattice_.empty())
+    {
+        return lattice_.find_cell(p);
+    }
     const point pt(p.x(), p.y(), p.z());
     if (!boxCells_)
     {
@@ -87,17 +105,30 @@ void Foam::meltdem::foamDistributionMesh::cells_in_sphere
     std::vector<long>& cells
 ) const
 {
+    if (!lattice_.empty())
+    {
+        lattice_.cells_in_box
+        (
+            Eigen::Vector3d(c.x() - r, c.y() - r, c.z() - r),
+            Eigen::Vector3d(c.x() + r, c.y() + r, c.z() + r),
+            cells
+        );
+        return;
+    }
     const treeBoundBox search
     (
         point(c.x() - r, c.y() - r, c.z() - r),
         point(c.x() + r, c.y() + r, c.z() + r)
     );
     // boxes overlapping the sphere's box: a superset of the cells it touches
+    // (in ascending order, as the lattice gives them)
+    const std::size_t start = cells.size();
     const labelList hits(tree_->findBox(search));
     for (const label celli : hits)
     {
         if (cellBoxes_[celli].overlaps(search)) cells.push_back(long(celli));
     }
+    std::sort(cells.begin() + std::ptrdiff_t(start), cells.end());
 }
 
 

@@ -121,7 +121,8 @@ class ParallelExchange {
   std::vector<std::size_t> start_;
   std::vector<long> cells_;
   std::vector<double> weights_;
-  std::vector<double> share_;  // per weight: the particle's share of the cell (its parcel)
+  std::vector<double> share_;    // per weight: the particle's share of the cell (its parcel)
+  std::vector<double> claimed_;  // per cell: the sum of its particles' claims (locate's scratch)
   // weight k's cell's part of its particle's parcel: mass, heat capacity (per unit volume
   // and by the weights without cell volumes)
   double parcel_mass(const CellFluidFields &f, std::size_t k) const;

@@ -44,6 +44,14 @@ class SphereBoxOverlaps {
   std::vector<double> corner_;     // U at plane triples, NaN until evaluated
   int index(int axis, double offset) const;
   double corner(int i, int j, int k);
+
+  // At most one plane cuts the sphere along each axis (a sphere smaller than its cells): each
+  // box holds whole pieces of the eight the planes make, evaluated once in reset()
+  bool octants_ = false;
+  double cut_[3] = {0.0, 0.0, 0.0};  // the cutting plane's offset, or -r_ where none cuts
+  double piece_[8] = {};             // piece with bit a set: the side above cut_[a]
+  void octant_pieces();
+  double octant_volume(std::size_t i) const;
 };
 
 }  // namespace meltdem::coupling

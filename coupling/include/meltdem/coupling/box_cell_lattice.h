@@ -1,0 +1,36 @@
+#pragma once
+// Cell search on meshes whose cells are axis-aligned boxes on a tensor-product lattice (the
+// blockMesh hexahedra of the scenes, graded or not, a rank's part of one): a point or a box is
+// located by binary search in the three lists of coordinate planes instead of a tree walk.
+#include <Eigen/Core>
+
+#include <vector>
+
+namespace meltdem::coupling {
+
+class BoxCellLattice {
+ public:
+  // Cells by their bounding boxes (lo, hi). True when every cell spans exactly one interval
+  // between consecutive planes on each axis, no two cells share a slot, and the lattice has at
+  // most max_slots_per_cell slots per cell (the rest are holes: a rank's irregular part of a
+  // mesh). False otherwise, and the lattice stays empty.
+  bool build(const std::vector<Eigen::Vector3d> &lo, const std::vector<Eigen::Vector3d> &hi,
+             double max_slots_per_cell = 8.0);
+
+  bool empty() const { return slots_.empty(); }
+
+  // the lowest cell whose closed box contains p; -1 when none does
+  long find_cell(const Eigen::Vector3d &p) const;
+
+  // every cell whose closed box overlaps the closed box [lo, hi], in ascending order
+  void cells_in_box(const Eigen::Vector3d &lo, const Eigen::Vector3d &hi, std::vector<long> &cells) const;
+
+ private:
+  long slot(int i, int j, int k) const { return slots_[(std::size_t(k) * n_[1] + std::size_t(j)) * n_[0] + i]; }
+
+  std::vector<double> planes_[3];  // sorted coordinate planes per axis; n_[a] = intervals
+  int n_[3] = {0, 0, 0};
+  std::vector<long> slots_;  // cell of each lattice slot, -1 for a hole
+};
+
+}  // namespace meltdem::coupling

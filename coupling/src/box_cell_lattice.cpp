@@ -1,0 +1,88 @@
+#include "meltdem/coupling/box_cell_lattice.h"
+
+#include <algorithm>
+
+namespace meltdem::coupling {
+
+bool BoxCellLattice::build(const std::vector<Eigen::Vector3d> &lo, const std::vector<Eigen::Vector3d> &hi,
+                           double max_slots_per_cell)
+{
+  slots_.clear();
+  const std::size_t ncells = lo.size();
+  if (ncells == 0 || hi.size() != ncells) return false;
+  // the planes are the cells' own coordinates: cells that share a face share them exactly
+  for (int a = 0; a < 3; ++a) {
+    std::vector<double> &p = planes_[a];
+    p.clear();
+    p.reserve(2 * ncells);
+    for (std::size_t c = 0; c < ncells; ++c) p.push_back(lo[c][a]), p.push_back(hi[c][a]);
+    std::sort(p.begin(), p.end());
+    p.erase(std::unique(p.begin(), p.end()), p.end());
+    n_[a] = int(p.size()) - 1;
+    if (n_[a] < 1) return false;
+  }
+  const double total = double(n_[0]) * n_[1] * n_[2];
+  if (total > max_slots_per_cell * double(ncells)) return false;
+  std::vector<long> slots(std::size_t(total), -1);
+  for (std::size_t c = 0; c < ncells; ++c) {
+    int idx[3];
+    for (int a = 0; a < 3; ++a) {
+      const std::vector<double> &p = planes_[a];
+      const auto it = std::lower_bound(p.begin(), p.end(), lo[c][a]);
+      idx[a] = int(it - p.begin());
+      if (idx[a] >= n_[a] || p[std::size_t(idx[a]) + 1] != hi[c][a]) return false;  // spans several
+    }
+    long &s = slots[(std::size_t(idx[2]) * n_[1] + std::size_t(idx[1])) * n_[0] + idx[0]];
+    if (s >= 0) return false;  // two cells in one slot
+    s = long(c);
+  }
+  slots_.swap(slots);
+  return true;
+}
+
+long BoxCellLattice::find_cell(const Eigen::Vector3d &p) const
+{
+  if (slots_.empty()) return -1;
+  // per axis the one or two intervals whose closed range holds the coordinate (two on a plane)
+  int first[3], last[3];
+  for (int a = 0; a < 3; ++a) {
+    const std::vector<double> &q = planes_[a];
+    if (!(p[a] >= q.front() && p[a] <= q.back())) return -1;
+    const int up = int(std::upper_bound(q.begin(), q.end(), p[a]) - q.begin());  // q[up-1] <= p < q[up]
+    last[a] = std::min(up - 1, n_[a] - 1);
+    first[a] = q[std::size_t(up) - 1] == p[a] && up >= 2 ? up - 2 : last[a];
+  }
+  long best = -1;
+  for (int k = first[2]; k <= last[2]; ++k)
+    for (int j = first[1]; j <= last[1]; ++j)
+      for (int i = first[0]; i <= last[0]; ++i) {
+        const long c = slot(i, j, k);
+        if (c >= 0 && (best < 0 || c < best)) best = c;
+      }
+  return best;
+}
+
+void BoxCellLattice::cells_in_box(const Eigen::Vector3d &lo, const Eigen::Vector3d &hi, std::vector<long> &cells) const
+{
+  if (slots_.empty()) return;
+  int first[3], last[3];
+  for (int a = 0; a < 3; ++a) {
+    const std::vector<double> &q = planes_[a];
+    // intervals [q[i], q[i+1]] with q[i+1] >= lo and q[i] <= hi
+    first[a] = std::max(0, int(std::lower_bound(q.begin(), q.end(), lo[a]) - q.begin()) - 1);
+    last[a] = std::min(n_[a] - 1, int(std::upper_bound(q.begin(), q.end(), hi[a]) - q.begin()) - 1);
+    if (!(lo[a] <= q.back() && hi[a] >= q.front()) || first[a] > last[a]) return;
+  }
+  const std::size_t start = cells.size();
+  for (int k = first[2]; k <= last[2]; ++k)
+    for (int j = first[1]; j <= last[1]; ++j)
+      for (int i = first[0]; i <= last[0]; ++i) {
+        const long c = slot(i, j, k);
+        if (c >= 0) cells.push_back(c);
+      }
+  // (a blockMesh numbers its cells in this order already)
+  if (!std::is_sorted(cells.begin() + std::ptrdiff_t(start), cells.end()))
+    std::sort(cells.begin() + std::ptrdiff_t(start), cells.end());
+}
+
+}  // namespace meltdem::coupling
