@@ -265,6 +265,7 @@ void Foam::meltdem::particleCoupling::advance(Time& runTime, const fluidFields& 
     // rest of the step heats its melt (the continuum gets it with the melt's enthalpy), so
     // continuum + particles still absorb eta P
     std::unordered_map<std::int64_t, double> startRadius;
+    startRadius.reserve(start.size());
     for (const auto& r : start) startRadius[r.id] = r.radius;
     for (auto& r : records)
     {

@@ -181,6 +181,7 @@ Foam::meltdem::particleSampling::fluidStates
 ) const
 {
     std::unordered_map<std::int64_t, mc::FluidState> fluid;
+    fluid.reserve(std::size_t(exchange.global_particles()));
     for (std::int64_t g = 0; g < exchange.global_particles(); ++g)
     {
         if (!exchange.global_inside(g)) continue;
