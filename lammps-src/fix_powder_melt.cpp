@@ -26,6 +26,7 @@
 #include <cmath>
 #include <cstring>
 #include <stdexcept>
+#include <unordered_map>
 
 using namespace LAMMPS_NS;
 using namespace FixConst;
@@ -425,6 +426,26 @@ void FixPowderMelt::end_of_step()
         // the continuum has no energy equation: an isothermal particle (drag only)
         r = lit;
         r.heat = 0.0;
+      } else if (fluid.implicit_heat) {
+        // the continuum's energy solve exchanged the heat: take what it gave at once (a particle
+        // the light melted away hands it on with its melt). Heat that would cool it below 0 K
+        // waits (it goes on with its melt)
+        const double take = lit.fully_molten ? 0.0 : std::max(melt[i][OWED], -lit.m * lit.h);
+        if (lit.fully_molten) {
+          r = lit;
+        } else {
+          r = mc::exchange_heat(mat, lit.h, lit.m, lit.d, take);
+          r.mass_melted += lit.mass_melted;
+          r.enthalpy_out += lit.enthalpy_out;
+        }
+        melt[i][OWED] -= take;
+        if (r.fully_molten) {
+          r.heat += melt[i][OWED];
+          r.enthalpy_out += melt[i][OWED];
+          melt[i][OWED] = 0.0;
+        }
+        melt[i][COND] =
+            r.fully_molten ? 0.0 : mc::ranz_marshall_k_nu(fluid, mc::slip_reynolds(fluid, v[i], r.d)) * M_PI * r.d;
       } else if (lit.fully_molten) {
         r = lit;
         r.heat = 0.0;
@@ -642,6 +663,9 @@ mc::ExchangeRecord FixPowderMelt::record(int i) const
   r.heat_absorbed = melt[i][I_HEAT];
   r.impulse_from_fluid = Eigen::Vector3d(melt[i][I_DX], melt[i][I_DY], melt[i][I_DZ]);
   r.external_heat = melt[i][I_LASER];
+  r.conductance = molten ? 0.0 : melt[i][COND];
+  r.heat_capacity = r.mass * mat.cp;
+  r.heat_owed = melt[i][OWED];
   return r;
 }
 
@@ -660,7 +684,25 @@ void FixPowderMelt::reset_interval()
 {
   finished.clear();
   for (int i = 0; i < atom->nlocal; i++)
-    for (int k = I_MASS; k < NCOL; k++) melt[i][k] = 0.0;
+    for (int k = I_MASS; k <= P_T; k++) melt[i][k] = 0.0;
+}
+
+void FixPowderMelt::set_heat_owed(const std::vector<tagint> &tags, const std::vector<double> &heat)
+{
+  if (tags.size() != heat.size()) error->one(FLERR, "Fix powder/melt: set_heat_owed needs one heat per tag");
+  std::unordered_map<tagint, double> of;
+  of.reserve(tags.size());
+  for (std::size_t k = 0; k < tags.size(); ++k) of[tags[k]] = heat[k];
+  std::size_t found = 0;
+  for (int i = 0; i < atom->nlocal; i++) {
+    const auto it = of.find(atom->tag[i]);
+    if (it == of.end()) continue;
+    melt[i][OWED] += it->second;
+    ++found;
+  }
+  if (found != tags.size())
+    error->one(FLERR, "Fix powder/melt: {} of {} particles given heat are not on this rank", tags.size() - found,
+               tags.size());
 }
 
 bigint FixPowderMelt::remove_particles(const std::vector<tagint> &tags)

@@ -79,6 +79,9 @@ class FixPowderMelt : public Fix {
   // state now (position, radius, velocity, T, h; mass 0 once fully molten).
   void interval_records(std::vector<meltdem::coupling::ExchangeRecord> &out) const;
   void reset_interval();
+  // implicit heat exchange: the heat [J] the continuum's energy solve gave each listed local
+  // particle (by tag), taken at the start of the next interval
+  void set_heat_owed(const std::vector<tagint> &tags, const std::vector<double> &heat);
   // remove the local particles whose tag is in `tags` (sorted) now, between runs, e.g.
   // particles that left the continuum's mesh; collective; returns the global count
   bigint remove_particles(const std::vector<tagint> &tags);
@@ -95,7 +98,8 @@ class FixPowderMelt : public Fix {
   // mass, enthalpy and momentum handed over, heat absorbed, drag impulse, laser energy
   // P_*: the velocity and temperature of the fluid parcel the particle exchanges momentum
   // and heat with over the coupling interval (two bodies; P_SET 0: not yet taken from the
-  // fluid this interval). S_*: the
+  // fluid this interval). Implicit heat exchange: OWED, the heat the energy solve gave it, not
+  // yet taken; COND, its conductance k Nu pi d at its last step [W/K]. S_*: the
   // particle's memory of its solid-metal contact (mc::SolidContactMemory), kept across
   // intervals
   enum {
@@ -127,6 +131,8 @@ class FixPowderMelt : public Fix {
     P_UZ,
     P_SET,
     P_T,
+    OWED,
+    COND,
     NCOL
   };
   std::vector<meltdem::coupling::ExchangeRecord> finished;  // deleted this interval

@@ -291,6 +291,11 @@ void LammpsCouplingHost::set_fluid(std::unordered_map<std::int64_t, mc::FluidSta
   impl_->provider->fluid = std::move(fluid);
 }
 
+void LammpsCouplingHost::set_heat_owed(const std::vector<std::int64_t> &tags, const std::vector<double> &heat)
+{
+  impl_->melt->set_heat_owed(std::vector<tagint>(tags.begin(), tags.end()), heat);
+}
+
 void LammpsCouplingHost::advance(int n, std::vector<mc::ExchangeRecord> &records)
 {
   if (n < 1) throw std::invalid_argument("LammpsCouplingHost::advance: n must be >= 1");

@@ -78,6 +78,10 @@ class LammpsCouplingHost {
   // no fluid (they neither heat nor feel drag). Keys are particle tags.
   void set_fluid(std::unordered_map<std::int64_t, coupling::FluidState> fluid);
 
+  // the heat [J] the continuum's implicit energy solve gave each of this rank's listed
+  // particles (tags from the records of the last advance()); they take it in the next one
+  void set_heat_owed(const std::vector<std::int64_t> &tags, const std::vector<double> &heat);
+
   // run n DEM steps; records: this rank's particles with their interval exchange
   // (including particles that melted away during the interval)
   void advance(int n, std::vector<coupling::ExchangeRecord> &records);

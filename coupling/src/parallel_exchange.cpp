@@ -181,6 +181,16 @@ void ParallelExchange::deposit(const std::vector<Amounts> &local_amounts, std::v
   }
 }
 
+void ParallelExchange::weighted_mean(const double *cell_values, std::vector<double> &local_out) const
+{
+  const std::size_t n = all_.size();
+  std::vector<double> sums(n, 0.0);
+  for (std::size_t g = 0; g < n; ++g)
+    for (std::size_t k = start_[g]; k < start_[g + 1]; ++k) sums[g] += weights_[k] * cell_values[cells_[k]];
+  if (n) MPI_Allreduce(MPI_IN_PLACE, sums.data(), int(n), MPI_DOUBLE, MPI_SUM, comm_);
+  local_out.assign(sums.begin() + std::ptrdiff_t(offset_), sums.begin() + std::ptrdiff_t(offset_) + counts_[rank_]);
+}
+
 void ParallelExchange::deposit_taken(const std::vector<std::int64_t> &ids, const std::vector<double> &heat,
                                      const std::vector<Eigen::Vector3d> &impulse, const std::vector<double> &particle_T,
                                      const CellFluidFields &f, std::vector<Amounts> &cell_amounts) const

@@ -214,6 +214,25 @@ MeltStepResult absorb_heat(const MeltMaterial &mat, double h, double m, double d
   return r;
 }
 
+MeltStepResult exchange_heat(const MeltMaterial &mat, double h, double m, double d, double energy)
+{
+  if (!std::isfinite(energy)) throw std::invalid_argument("exchange_heat needs a finite energy");
+  if (energy >= 0.0) return absorb_heat(mat, h, m, d, energy);
+  check_material(mat);
+  if (!(m > 0.0) || !(d > 0.0)) throw std::invalid_argument("exchange_heat needs m > 0, d > 0");
+  const double hm = mat.cp * mat.Tmelt;
+  MeltStepResult r = unchanged(h, m, d, hm);
+  r.heat = std::max(energy, -m * r.h);
+  r.h += r.heat / m;
+  return r;
+}
+
+double relaxation_factor(double x)
+{
+  if (!(x >= 0.0)) throw std::invalid_argument("relaxation_factor needs x >= 0");
+  return x < 1e-8 ? 1.0 - 0.5 * x : -std::expm1(-x) / x;
+}
+
 double particle_conductance(const FluidState &fluid, double d, const double v[3])
 {
   if (!(d > 0.0)) throw std::invalid_argument("particle_conductance needs d > 0");

@@ -59,6 +59,35 @@ TEST_P(ParallelExchangeSerial, DepositSumsToWhatWasHandedOver)
   }
 }
 
+TEST_P(ParallelExchangeSerial, WeightedMeanIsTheDepositsAdjoint)
+{
+  // sum_p a_p mean_p(f) = sum_c f_c deposit_c(a): the mean a particle sees through the weights
+  // is exactly what the implicit heat exchange books against what its cells lost
+  ExchangeCase k;
+  const CartesianGridMesh mesh(k.x, k.y, k.z);
+  ParallelExchange ex(mesh, GetParam(), MPI_COMM_SELF);
+  ex.locate(k.particles);
+  std::vector<double> f(std::size_t(mesh.n_cells()));
+  for (std::size_t c = 0; c < f.size(); ++c) f[c] = 300.0 + 7.0 * double(c % 13) + 0.01 * double(c);
+  std::vector<double> mean;
+  ex.weighted_mean(f.data(), mean);
+  ASSERT_EQ(mean.size(), k.particles.size());
+  std::vector<Amounts> a(k.particles.size(), Amounts{}), cells(f.size(), Amounts{});
+  double lhs = 0.0, rhs = 0.0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    a[i][0] = 1.0 + 0.1 * double(i);
+    if (ex.inside(i))
+      lhs += a[i][0] * mean[i];
+    else
+      EXPECT_EQ(mean[i], 0.0);
+  }
+  ex.deposit(a, cells);
+  for (std::size_t c = 0; c < f.size(); ++c) rhs += f[c] * cells[c][0];
+  meltdem::testing::expect_relative(std::string("parallel_exchange ") + to_string(GetParam()) +
+                                        ": sum a mean(f) vs sum f deposit(a)",
+                                    lhs, rhs, 1e-13);
+}
+
 TEST_P(ParallelExchangeSerial, SamplingEqualsSampleFluid)
 {
   ExchangeCase k;

@@ -152,6 +152,41 @@ TEST(ParticleMelting, AbsorbHeatKeepsTheBalanceAndMeltsTheExcess)
   EXPECT_THROW(absorb_heat(mat, h, m, d, -1.0), std::invalid_argument);
 }
 
+TEST(ParticleMelting, ExchangeHeatOfEitherSignKeepsTheBalance)
+{
+  const MeltMaterial mat{500.0, 1700.0, 2.7e5};
+  const double d = 1e-4, m = 7800 * M_PI / 6 * d * d * d, h = 500.0 * 300.0;
+  for (double E : {-1e-5, -m * h / 2, 0.0, 1e-4, 1.0}) {
+    const MeltStepResult r = exchange_heat(mat, h, m, d, E);
+    EXPECT_NEAR(m * h + r.heat, r.m * r.h + r.enthalpy_out, 1e-15 * (m * h + std::abs(E))) << "E = " << E;
+    EXPECT_EQ(r.heat, E);
+  }
+  expect_relative("cooling by half the enthalpy: T",
+                  particle_temperature(mat, exchange_heat(mat, h, m, d, -m * h / 2).h), 150.0, 1e-14);
+  // never below 0 K: what would take it there is refused (and shows as heat < energy)
+  const MeltStepResult cold = exchange_heat(mat, h, m, d, -2 * m * h);
+  expect_absolute("cooling past 0 K: h", cold.h, 0.0, 1e-9);
+  expect_relative("cooling past 0 K: heat taken = m h", cold.heat, -m * h, 1e-15);
+  EXPECT_THROW(exchange_heat(mat, h, m, d, std::nan("")), std::invalid_argument);
+}
+
+TEST(ParticleMelting, RelaxationFactorEndsWhereTheRelaxationEnds)
+{
+  // a particle at T0 against a bath at Tf over a step dt, taking dt G phi(x) (Tf - T0) at
+  // once, ends at the exact relaxation Tf + (T0 - Tf) exp(-x), x = dt G / C, for any step
+  const double C = 2.0, G = 3.0, T0 = 300.0, Tf = 900.0;
+  double worst = 0.0, past = 0.0;
+  for (double x : {0.0, 1e-12, 1e-9, 1e-8, 1e-6, 1e-3, 0.1, 1.0, 10.0, 1e3, 1e6}) {
+    const double dt = x * C / G;
+    const double end = T0 + dt * G * relaxation_factor(x) * (Tf - T0) / C;
+    worst = std::max(worst, std::abs(end - (Tf + (T0 - Tf) * std::exp(-x))) / (Tf - T0));
+    past = std::max(past, end - Tf);
+  }
+  expect_absolute("x = 0..1e6: max |T_end - exact relaxation| / (Tf - T0)", worst, 0.0, 1e-15);
+  expect_absolute("x = 0..1e6: largest step past the bath [K]", std::max(past, 0.0), 0.0, 0.0);
+  EXPECT_THROW(relaxation_factor(-1.0), std::invalid_argument);
+}
+
 TEST(ParticleMelting, ConductanceIsKNuPiD)
 {
   // at rest Nu = 2 (Codina2019 gas, 600 um: 0.377 W/K); with slip Ranz-Marshall

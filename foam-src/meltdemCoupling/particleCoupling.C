@@ -94,7 +94,8 @@ Foam::meltdem::particleCoupling::particleCoupling
     // off: the beam passes the particles (LMD, Codina2019 4.1: the powder's own absorption
     // is negligible beside the pool's, and the ray grid is costly over a wide beam)
     const bool laserShadow = dict_.getOrDefault<bool>("laserShadow", true);
-    Info<< "Particles: distribution " << mc::to_string(model_) << endl;
+    Info<< "Particles: distribution " << mc::to_string(model_) << ", heat exchange "
+        << dict_.getOrDefault<word>("heatExchange", "twoBody") << endl;
 
     comm_.reset(new particleCommunicator);
     const MPI_Comm comm = comm_->comm();
@@ -127,6 +128,17 @@ Foam::meltdem::particleCoupling::particleCoupling
     sampling_.reset(new particleSampling(mesh, comm, thermal_, laserShadow));
     bounds_.reset(new temperatureBounds(mesh, comm));
     deposition_.reset(new particleDeposition(mesh, rhoMetal, model_));
+    const word heatExchange(dict_.getOrDefault<word>("heatExchange", "twoBody"));
+    if (heatExchange != "twoBody" && heatExchange != "implicit")
+    {
+        FatalIOErrorInFunction(dict_)
+            << "heatExchange must be twoBody or implicit, not " << heatExchange << exit(FatalIOError);
+    }
+    if (heatExchange == "implicit" && thermal_)
+    {
+        heat_.reset(new particleHeatExchange(mesh, lammps.material().Tmelt));
+        sampling_->setImplicitHeat(true);
+    }
     ledger_.reset
     (
         new particleLedgerOutput
@@ -288,6 +300,12 @@ void Foam::meltdem::particleCoupling::advance(Time& runTime, const fluidFields& 
     std::swap(located_, startLocated_);
     std::swap(haveLocated_, startHaveLocated_);
     relocate(shapesOf(records));
+    if (heat_)
+    {
+        // the energy solve exchanges the heat: none is taken from the cells here
+        for (auto& r : records) r.heat_absorbed = 0;
+        heat_->prepare(records, *exchange_, f.T, elapsed);
+    }
     std::vector<std::int64_t> leaving;
     deposition_->deposit(records, *exchange_, *startExchange_, cells, elapsed, inside_, lost_, leaving);
 
@@ -308,7 +326,8 @@ void Foam::meltdem::particleCoupling::advance(Time& runTime, const fluidFields& 
 
 void Foam::meltdem::particleCoupling::book(const functionObjects::meltdemBalance& balance)
 {
-    const ::meltdem::LammpsCouplingHost& lammps = (*host_)();
+    ::meltdem::LammpsCouplingHost& lammps = (*host_)();
+    if (heat_) heat_->settle(*exchange_, inside_, lammps);
     ledger_->book(balance.lastStep(), inside_, lost_, lammps, subSteps_, exchangeSeconds_, lammpsSeconds_);
     lossWatch_->check(lost_, lammps, distMesh_.globalBounds());
     bounds_->check(deposition_->enthalpySource());

@@ -159,7 +159,7 @@ void Foam::meltdem::particleLedgerOutput::book
         for (const auto& r : *list)
         {
             sums[0] += r.mass;
-            sums[1] += r.mass*r.h;
+            sums[1] += r.mass*r.h + r.heat_owed;
             sums[2] += r.heat_absorbed;
             sums[3] += r.mass_out;
             sums[4] += r.enthalpy_out;

@@ -82,7 +82,7 @@ void Foam::meltdem::particleSampling::sample
         mc::heat_exchange_time(heatCapacity.data(), conductance.data(), V.size()),
         minOp<scalar>()
     );
-    bounds.start(f.T, Tplo, Tphi, exchangeTime);
+    bounds.start(f.T, Tplo, Tphi, implicitHeat_ ? GREAT : exchangeTime);
 }
 
 
@@ -190,6 +190,7 @@ Foam::meltdem::particleSampling::fluidStates
         if (!solid.empty()) fs.solid = solid[g];
         if (!light.empty()) fs.heat_source = light[g];
         fs.thermal = thermal_;
+        fs.implicit_heat = thermal_ && implicitHeat_;
     }
     return fluid;
 }

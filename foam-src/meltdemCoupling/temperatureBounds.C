@@ -36,8 +36,9 @@ void Foam::meltdem::temperatureBounds::start
             << "over its particles' conductance, C/G = " << exchangeTime_ << " s: the exchange "
             << "stays bounded, but those particles take at most what their cells hold per step, "
             << "about C/(G dt) = " << exchangeTime_/dt << " of the rate of an unbounded fluid. "
-            << "For the rate, lower maxDeltaT (controlDict) or demStepsPerFluidStep towards "
-            << "C/G. (Warned once per run.)" << endl;
+            << "For the rate, use particles { heatExchange implicit; } (the energy solve takes "
+            << "the heat from the cells) or lower maxDeltaT (controlDict) or demStepsPerFluidStep "
+            << "towards C/G. (Warned once per run.)" << endl;
         warnedLongStep_ = true;
     }
     Tlo_ = min(returnReduce(Tplo, minOp<scalar>()), min(T).value());
@@ -99,12 +100,26 @@ void Foam::meltdem::temperatureBounds::check(const volScalarField::Internal& ent
             << "the continuum temperature left [" << Tlo_ << ", " << Thi_ << "] K, the range "
             << "of continuum and particles before the step and of the particles after it "
             << "(T min/max now " << Tmin << ", "
-            << Tmax << " K): the particles exchanged more heat over the fluid step ("
-            << mesh_.time().deltaTValue() << " s, fluid frozen) than their cells hold. "
-            << "The worst cell's heat capacity over its particles' conductance is "
-            << exchangeTime_ << " s: lower maxDeltaT (controlDict) or demStepsPerFluidStep "
-            << "towards it, or spread the exchange over more cells (distribution overlap "
-            << "or neighbours, coarser cells). The cell furthest out, at (" << cell[3] << " "
+            << Tmax << " K). ";
+        if (exchangeTime_ < 0.5*GREAT)
+        {
+            FatalError
+                << "The particles exchanged more heat over the fluid step ("
+                << mesh_.time().deltaTValue() << " s, fluid frozen) than their cells hold. "
+                << "The worst cell's heat capacity over its particles' conductance is "
+                << exchangeTime_ << " s: lower maxDeltaT (controlDict) or demStepsPerFluidStep "
+                << "towards it, or spread the exchange over more cells (distribution overlap "
+                << "or neighbours, coarser cells). ";
+        }
+        else
+        {
+            FatalError
+                << "The particles' heat (heatExchange implicit, in the energy solve) cannot "
+                << "take a cell out of that range; the continuum's own solve did (fluid step "
+                << mesh_.time().deltaTValue() << " s): lower maxDeltaT or maxCo. ";
+        }
+        FatalError
+            << "The cell furthest out, at (" << cell[3] << " "
             << cell[4] << " " << cell[5] << "), went from " << cell[0] << " to " << cell[1]
             << " K, of which the particles' exchange about " << cell[2] << " K"
             << (mag(cell[2]) < 0.1*mag(cell[1] - cell[0])

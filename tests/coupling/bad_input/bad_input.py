@@ -123,6 +123,11 @@ VARIANTS = {
         "demStepsPerFluidStep 0",
         lambda c: edit(c, PROPS, "demStepsPerFluidStep auto;", "demStepsPerFluidStep 0;"),
         ["demStepsPerFluidStep"]),
+    "heatExchange_unknown": (
+        "heatExchange explicit (unknown mode)",
+        lambda c: edit(c, PROPS, "demStepsPerFluidStep auto;",
+                       "demStepsPerFluidStep auto;\n    heatExchange explicit;"),
+        ["heatExchange", "twoBody or implicit", "explicit"]),
     "no_melt_fix": (
         "no fix powder/melt in the LAMMPS input",
         lambda c: (edit(c, LMP, MELT_FIX, ""), drop_lines(c, LMP, r"^thermo_style .*\n")),

@@ -40,12 +40,20 @@ struct ExchangeRecord {
 
   // from outside the system over this step (laser light on the particle) [J]
   double external_heat = 0.0;
+
+  // implicit heat exchange: the particle's convective conductance k Nu pi d [W/K] and heat
+  // capacity m cp [J/K] at the end of the step, and the heat [J] the continuum gave it in this
+  // step's energy solve, which it takes at the start of the next interval (held until then)
+  double conductance = 0.0;
+  double heat_capacity = 0.0;
+  double heat_owed = 0.0;
 };
 
-// mass, enthalpy m h and momentum m v the particle carries at the end of the step
+// mass, enthalpy m h (and the heat owed to it) and momentum m v the particle carries at the
+// end of the step
 inline Amounts stored_in(const ExchangeRecord &r)
 {
-  return make_amounts(r.mass, r.mass * r.h, r.mass * r.v);
+  return make_amounts(r.mass, r.mass * r.h + r.heat_owed, r.mass * r.v);
 }
 
 // the net gain of the continuum from this particle over the step: what melted, minus the heat

@@ -22,6 +22,8 @@ struct FluidState {
                                   // its share of its cells' mass (0: unbounded, 'ambient')
   double capacity = 0.0;          // heat capacity [J/K] of the fluid it exchanges heat with:
                                   // its share of its cells' rho cp V (0: unbounded, 'ambient')
+  bool implicit_heat = false;     // true: the continuum's energy solve exchanges the heat
+                                  // (implicit in the cells' T); the particle takes what it owes
 };
 
 class FluidStateProvider {

@@ -79,6 +79,11 @@ class ParallelExchange {
   // rank: cell_amounts has one entry per local cell. Amounts of particles outside the
   // mesh are not deposited (the caller books them as outflow).
   void deposit(const std::vector<Amounts> &local_amounts, std::vector<Amounts> &cell_amounts) const;
+
+  // Collective. Sum over each of this rank's located particles of w_i values[c_i] over its
+  // cells on every rank (values per local cell), in local order: the mean of a cell field the
+  // particle sees, by the weights deposit() spreads with (0 outside the mesh).
+  void weighted_mean(const double *cell_values, std::vector<double> &local_out) const;
   // Collective. Takes what each particle took from the fluid out of the cells: its
   // heat (J; negative: gave) from the enthalpy, each cell c in proportion to the heat it
   // holds beyond the particle's temperature T_p (end of step) on the side the heat flowed,

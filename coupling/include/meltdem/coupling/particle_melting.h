@@ -53,6 +53,17 @@ struct MeltStepResult {
 // with the melt (enthalpy_out). heat = energy; m h + energy = m' h' + enthalpy_out exactly.
 MeltStepResult absorb_heat(const MeltMaterial &mat, double h, double m, double d, double energy);
 
+// Heat [J] of either sign handed to the particle at once: gained as absorb_heat(), lost as
+// sensible heat (never below 0 K: the rest is refused, heat = what was taken). m h + heat =
+// m' h' + out exactly.
+MeltStepResult exchange_heat(const MeltMaterial &mat, double h, double m, double d, double energy);
+
+// The factor (1 - exp(-x)) / x, x = dt G / C_p, by which a particle of heat capacity C_p and
+// conductance G takes the mean of the heat flux G (T_f - T_p) over a step dt against a fluid
+// at T_f: with it the particle ends the step exactly where it would relax to over dt, never
+// past T_f, however long the step (1 for x -> 0; 1 / x for x >> 1).
+double relaxation_factor(double x);
+
 // One step of length dt with k_nu = k_f Nu [W/(m K)] and fluid temperature T_fluid.
 MeltStepResult heat_melt_step(const MeltMaterial &mat, double h, double m, double d, double k_nu, double T_fluid,
                               double dt);
