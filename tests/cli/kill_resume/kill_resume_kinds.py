@@ -7,7 +7,7 @@ three copies are killed with SIGKILL to their process group, as a batch system w
   write     while a write time is being written (its folder has just appeared),
   twice     before the second checkpoint, and again while the resumed run runs,
 
-and resumed until they end. Kinds (usage: kill_resume_kinds.py coupled|continuum|dem):
+and resumed until they end. Kinds (usage: kill_resume_kinds.py coupled|coupled-implicit|continuum|dem):
 
   coupled    lmd-track's CI case cut to 0.09 s (powder inserted during the run, melting,
              solid-metal contact, the laser), write times 0.03 s apart, binary fields: the
@@ -15,6 +15,8 @@ and resumed until they end. Kinds (usage: kill_resume_kinds.py coupled|continuum
              (feed.dat of fix ave/time, dump.grains) and the particles at the end identical,
              every summary number equal (wall time aside), the absorbed laser power read over
              all segments equal at every step (no dip at the resume).
+  coupled-implicit  the same with particles { heatExchange implicit; } (the heat the energy
+             solve owes each grain is in the checkpoint)
   continuum  the same track without powder (laser, melting, flow; meltdemBalance added): the
              fields at the end identical byte for byte, the balance rows over all segments
              equal, the summary's absorbed laser energy equal.
@@ -47,8 +49,9 @@ from meltdem.testing.cli import SRC, check_absolute, check_at_most, meltdem_comm
 HERE = os.path.dirname(os.path.abspath(__file__))
 
 
-KIND = sys.argv[1]
-T = f"cli.kill_resume.{KIND}"
+IMPLICIT = sys.argv[1] == "coupled-implicit"
+KIND = "coupled" if IMPLICIT else sys.argv[1]
+T = f"cli.kill_resume.{sys.argv[1].replace('-', '.')}"
 ok = True
 work = tempfile.mkdtemp(prefix=f"meltdem-kill-{KIND}-")
 END, WRITE = 0.09, 0.03
@@ -77,6 +80,12 @@ def build():
     # binary fields, the default precisions (a case written from the docs)
     control(base, endTime=repr(END), writeInterval=repr(WRITE), writeFormat="binary", writePrecision=None,
             timePrecision=None)
+    if IMPLICIT:
+        props = os.path.join(base, "constant", "meltdemProperties")
+        text = open(props).read()
+        assert "demStepsPerFluidStep auto;" in text
+        open(props, "w").write(text.replace("demStepsPerFluidStep auto;",
+                                            "demStepsPerFluidStep auto;\n    heatExchange implicit;"))
     if KIND == "continuum":
         with open(os.path.join(base, "system", "controlDict"), "a") as f:
             f.write("\nfunctions { balance { type meltdemBalance; } }\n")
