@@ -94,8 +94,14 @@ Foam::meltdem::particleCoupling::particleCoupling
     // off: the beam passes the particles (LMD, Codina2019 4.1: the powder's own absorption
     // is negligible beside the pool's, and the ray grid is costly over a wide beam)
     const bool laserShadow = dict_.getOrDefault<bool>("laserShadow", true);
+    const word heatExchange(dict_.getOrDefault<word>("heatExchange", "twoBody"));
+    if (heatExchange != "twoBody" && heatExchange != "implicit")
+    {
+        FatalIOErrorInFunction(dict_)
+            << "heatExchange must be twoBody or implicit, not " << heatExchange << exit(FatalIOError);
+    }
     Info<< "Particles: distribution " << mc::to_string(model_) << ", heat exchange "
-        << dict_.getOrDefault<word>("heatExchange", "twoBody") << endl;
+        << heatExchange << endl;
 
     comm_.reset(new particleCommunicator);
     const MPI_Comm comm = comm_->comm();
@@ -128,12 +134,6 @@ Foam::meltdem::particleCoupling::particleCoupling
     sampling_.reset(new particleSampling(mesh, comm, thermal_, laserShadow));
     bounds_.reset(new temperatureBounds(mesh, comm));
     deposition_.reset(new particleDeposition(mesh, rhoMetal, model_));
-    const word heatExchange(dict_.getOrDefault<word>("heatExchange", "twoBody"));
-    if (heatExchange != "twoBody" && heatExchange != "implicit")
-    {
-        FatalIOErrorInFunction(dict_)
-            << "heatExchange must be twoBody or implicit, not " << heatExchange << exit(FatalIOError);
-    }
     if (heatExchange == "implicit" && thermal_)
     {
         heat_.reset(new particleHeatExchange(mesh, lammps.material().Tmelt));
