@@ -368,40 +368,34 @@ double SphereBoxOverlaps::corner(int i, int j, int k)
 void SphereBoxOverlaps::octant_pieces()
 {
   // U at the folded offsets {free, |cut|} of the three axes, each evaluated once
-  double folded[3][2];
-  int nt[3];
-  for (int a = 0; a < 3; ++a) {
-    folded[a][0] = kFree;
-    folded[a][1] = std::abs(cut_[a]);
-    nt[a] = cut_[a] > -r_ ? 2 : 1;
-  }
+  const auto term = [](double folded) { return folded == kFree ? 0 : 1; };
   double U[2][2][2] = {};
-  for (int i = 0; i < nt[0]; ++i)
-    for (int j = 0; j < nt[1]; ++j)
-      for (int k = 0; k < nt[2]; ++k) U[i][j][k] = upper_corner(r_, folded[0][i], folded[1][j], folded[2][k]);
-  // each side of a cut as signed terms over those offsets (the sphere is symmetric): above
+  for (int i = 0; i < 2; ++i)
+    for (int j = 0; j < 2; ++j)
+      for (int k = 0; k < 2; ++k) {
+        const double t[3] = {i ? std::abs(cut_[0]) : kFree, j ? std::abs(cut_[1]) : kFree,
+                             k ? std::abs(cut_[2]) : kFree};
+        const bool cut = (!i || cut_[0] > -r_) && (!j || cut_[1] > -r_) && (!k || cut_[2] > -r_);
+        if (cut) U[i][j][k] = upper_corner(r_, t[0], t[1], t[2]);
+      }
+  // each side of a cut as half-space terms over those offsets (the sphere is symmetric): above
   // a >= 0 is {x >= a}; below it, everything minus that; mirrored for a < 0. Without a cut
   // the whole axis counts as the side above
-  struct Side {
-    int n = 0, term[2] = {0, 0};
-    double sign[2] = {0.0, 0.0};
-  } side[3][2];
+  AxisTerms side[3][2];
   for (int a = 0; a < 3; ++a) {
-    if (nt[a] == 1) {
-      side[a][1] = Side{1, {0, 0}, {1.0, 0.0}};
+    if (!(cut_[a] > -r_)) {
+      side[a][1].add(kFree, 1.0, r_);
       continue;
     }
     const int near = cut_[a] >= 0.0 ? 1 : 0;  // the side that is the folded upper half-space
-    side[a][near] = Side{1, {1, 0}, {1.0, 0.0}};
-    side[a][1 - near] = Side{2, {0, 1}, {1.0, -1.0}};
+    side[a][near].add(std::abs(cut_[a]), 1.0, r_);
+    side[a][1 - near].add(kFree, 1.0, r_);
+    side[a][1 - near].add(std::abs(cut_[a]), -1.0, r_);
   }
   for (int p = 0; p < 8; ++p) {
-    const Side &x = side[0][p & 1], &y = side[1][(p >> 1) & 1], &z = side[2][(p >> 2) & 1];
-    double v = 0.0;
-    for (int i = 0; i < x.n; ++i)
-      for (int j = 0; j < y.n; ++j)
-        for (int k = 0; k < z.n; ++k) v += x.sign[i] * y.sign[j] * z.sign[k] * U[x.term[i]][y.term[j]][z.term[k]];
-    piece_[p] = std::max(0.0, v);
+    const AxisTerms ax[3] = {side[0][p & 1], side[1][(p >> 1) & 1], side[2][(p >> 2) & 1]};
+    piece_[p] = alternating_sum(
+        ax, [&](int i, int j, int k) { return U[term(ax[0].t[i])][term(ax[1].t[j])][term(ax[2].t[k])]; });
   }
 }
 
