@@ -35,6 +35,10 @@ Foam::meltdem::foamDistributionMesh::foamDistributionMesh(const fvMesh& mesh)
         }
         lattice_.build(lo, hi);
     }
+    if (!lattice_.empty())
+    {
+        return;  // the lattice answers every search: no octree
+    }
 
     treeBoundBox overall(pts);
     Random rnd(261782);
