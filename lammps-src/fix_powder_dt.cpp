@@ -6,8 +6,8 @@
    largest E* of the granular pair style, at the approach speed U = max(2 max|v|, vmin).
    That pair has the shortest contact of any pair or particle-wall contact, and
    2 max|v| bounds every relative speed, so dt never exceeds t_c/S of a real collision.
-   The largest U is held for one contact time (a collision keeps its duration while the
-   speeds drop during it).
+   The largest U is held for two contact times (a collision keeps its duration while the
+   speeds drop during it, and a damped one lasts longer).
 ------------------------------------------------------------------------- */
 
 #include "fix_powder_dt.h"
@@ -265,10 +265,11 @@ void FixPowderDt::update_dt()
                  2.0 * vmax, worst, estar, rhomax, maxoverlap);
   }
   // A collision that started at speed U lasts t_c(U) even though the speeds drop while
-  // it lasts: hold the largest U for one contact time, so dt does not grow mid-contact.
+  // it lasts, and up to 1.8 t_c damped (e = 0.05): hold the largest U for two contact
+  // times, so dt does not grow mid-contact.
   const double now = update->atime + (update->ntimestep - update->atimestep) * update->dt;
   const double Unow = mc::approach_speed_bound(vmax, vfloor);
-  if (Unow >= uhold || now - thold > mc::shortest_contact_time(rmin, rhomin, estar, uhold)) {
+  if (Unow >= uhold || now - thold > 2.0 * mc::shortest_contact_time(rmin, rhomin, estar, uhold)) {
     uhold = Unow;
     thold = now;
   }

@@ -25,6 +25,8 @@ class FixPowderDt : public Fix {
   void setup(int) override;
   void end_of_step() override;
   double compute_vector(int) override;
+  // approach speed U of the current step (m/s; 0 before the first particle)
+  double approach_speed() const { return out[4]; }
 
  private:
   double steps;         // collisionResolutionSteps S
@@ -36,7 +38,7 @@ class FixPowderDt : public Fix {
   double uhold, thold;  // held approach speed and the time it was recorded
   int respaflag;
   // output: dt, t_contact, sub-cycles, R_min, U used, E*, rho used
-  double out[7];
+  double out[7] = {};
 
   void read_pair_modulus();
   void update_dt();

@@ -4,17 +4,23 @@
 
 #include "fix_wall_gran_powder.h"
 
+#include "atom.h"
 #include "error.h"
+#include "fix_powder_dt.h"
 #include "lammps.h"
+#include "modify.h"
 #include "update.h"
 
 #include "meltdem/coupling/hertz_restitution.h"
 
+#include <cmath>
 #include <cstring>
 
 using namespace LAMMPS_NS;
 
 namespace {
+enum { XPLANE = 0, YPLANE = 1, ZPLANE = 2, ZCYLINDER, REGION };  // fix_wall_gran.cpp's wall styles
+
 bool is_wallstyle(const std::string &w)
 {
   return w == "xplane" || w == "yplane" || w == "zplane" || w == "zcylinder" || w == "region";
@@ -37,6 +43,24 @@ void WallGranPowderCoeffs::apply_damping(double *normal_coeffs) const
   // stock init() maps normal_coeffs[1] by Tsuji's polynomial again on every run:
   // overwrite it with the exact alpha after each init()
   if (damping != DAMP_STOCK) normal_coeffs[1] = alpha;
+}
+
+double WallGranPowderCoeffs::contact_speed(LAMMPS *lmp) const
+{
+  for (int i = 0; i < lmp->modify->nfix; i++)
+    if (auto *fix_dt = dynamic_cast<FixPowderDt *>(lmp->modify->fix[i]))
+      if (fix_dt->approach_speed() > 0.0) return 0.5 * fix_dt->approach_speed();
+  return impact_speed;
+}
+
+double WallGranPowderCoeffs::damping_correction(const double *normal_coeffs, double delta, double separation_rate,
+                                                double reff, double meff, double dt, double speed) const
+{
+  if (damping != DAMP_TSUJI_EXACT) return 0.0;
+  const double hertz_k = normal_coeffs[0] * std::sqrt(reff);
+  const double h = speed > 0.0 ? meltdem::coupling::contact_step(dt, speed, hertz_k, meff) : 0.0;
+  return meltdem::coupling::stepped_damping_correction(stepped.alpha(h), normal_coeffs[1], hertz_k, meff, delta,
+                                                       separation_rate, dt);
 }
 
 /* ---------------------------------------------------------------------- */
@@ -117,6 +141,13 @@ WallGranPowderArgs::WallGranPowderArgs(LAMMPS *lmp, int narg, char **arg, bool r
       }
       wall_given = true;
       i -= 1;  // the next word now sits at i
+    } else if (w == "impact_speed") {
+      need(i, 1, "impact_speed");
+      coeffs.impact_speed = num(i + 1);
+      if (!(coeffs.impact_speed > 0.0))
+        error->all(FLERR, "Illegal fix {} command: impact_speed must be > 0 (m/s)", style);
+      words.erase(words.begin() + i, words.begin() + i + 2);
+      i -= 1;
     } else if (w == "tangential") {
       need(i, 1, "tangential");
       if (words[i + 1].compare(0, 7, "mindlin") == 0 && i + 2 < words.size() && words[i + 2] == "NULL") kt_null = true;
@@ -134,7 +165,15 @@ WallGranPowderArgs::WallGranPowderArgs(LAMMPS *lmp, int narg, char **arg, bool r
       error->all(FLERR, "Fix {}: damping tsuji needs normal model hertz/material or hertz", style);
     if (e <= 0.0 || e > 1.0)
       error->all(FLERR, "Illegal fix {} command: restitution e must lie in (0,1] for damping tsuji", style);
+    for (const auto &w : words)
+      if (w == "limit_damping")
+        error->all(FLERR,
+                   "Fix {}: damping tsuji applies its damping over the whole step and cannot be combined "
+                   "with limit_damping (use tsuji/alpha)",
+                   style);
     coeffs.alpha = meltdem::coupling::alpha_for_restitution(e);
+    coeffs.e = e;
+    coeffs.stepped = meltdem::coupling::SteppedAlphaTable(e);
   }
   if (wall_given && model != MATERIAL)
     error->all(FLERR, "Fix {}: wall_material needs normal model hertz/material, dmt or jkr", style);
@@ -168,4 +207,57 @@ void FixWallGranPowder::init()
 {
   FixWallGran::init();
   coeffs.apply_damping(normal_coeffs);
+}
+
+void FixWallGranPowder::post_force(int vflag)
+{
+  FixWallGran::post_force(vflag);
+  if (coeffs.damping != WallGranPowderCoeffs::DAMP_TSUJI_EXACT || wallstyle == REGION) return;
+
+  // the stock wall geometry (fix_wall_gran.cpp post_force) for the stepped damping
+  double wlo = lo, whi = hi, vwall[3] = {0.0, 0.0, 0.0};
+  if (wiggle) {
+    const double arg = omega * (update->ntimestep - time_origin) * dt;
+    if (wallstyle == axis) {
+      wlo = lo + amplitude - amplitude * cos(arg);
+      whi = hi + amplitude - amplitude * cos(arg);
+    }
+    vwall[axis] = amplitude * omega * sin(arg);
+  } else if (wshear)
+    vwall[axis] = vshear;
+
+  double **x = atom->x, **v = atom->v, **f = atom->f;
+  const double *radius = atom->radius, *rmass = atom->rmass;
+  const int *mask = atom->mask;
+  const double speed = coeffs.contact_speed(lmp);
+  for (int i = 0; i < atom->nlocal; i++) {
+    if (!(mask[i] & groupbit)) continue;
+    double d[3] = {0.0, 0.0, 0.0}, vw[3] = {vwall[0], vwall[1], vwall[2]}, rwall = 0.0;
+    if (wallstyle == XPLANE || wallstyle == YPLANE || wallstyle == ZPLANE) {
+      const int k = wallstyle;  // XPLANE, YPLANE, ZPLANE are 0, 1, 2
+      const double del1 = x[i][k] - wlo, del2 = whi - x[i][k];
+      d[k] = del1 < del2 ? del1 : -del2;
+    } else if (wallstyle == ZCYLINDER) {
+      const double delxy = sqrt(x[i][0] * x[i][0] + x[i][1] * x[i][1]);
+      const double delr = cylradius - delxy;
+      if (delr > 2.0 * radius[i]) continue;  // far from the wall even one step ago
+      d[0] = -delr / delxy * x[i][0];
+      d[1] = -delr / delxy * x[i][1];
+      rwall = (delxy < cylradius) ? -2 * cylradius : 2 * cylradius;
+      if (wshear && axis != 2) {
+        vw[0] += vshear * x[i][1] / delxy;
+        vw[1] += -vshear * x[i][0] / delxy;
+        vw[2] = 0.0;
+      }
+    }
+    const double r = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    if (!(r > 0.0) || r > 2.0 * radius[i]) continue;
+    const double n[3] = {d[0] / r, d[1] / r, d[2] / r};
+    const double rate = (v[i][0] - vw[0]) * n[0] + (v[i][1] - vw[1]) * n[1] + (v[i][2] - vw[2]) * n[2];
+    const double reff = rwall == 0.0 ? radius[i] : radius[i] * rwall / (radius[i] + rwall);
+    double meff = rmass[i];
+    if (fix_rigid && mass_rigid[i] > 0.0) meff = mass_rigid[i];
+    const double fn = coeffs.damping_correction(normal_coeffs, radius[i] - r, rate, reff, meff, update->dt, speed);
+    for (int k = 0; k < 3; k++) f[i][k] += n[k] * fn;
+  }
 }

@@ -16,6 +16,8 @@ FixStyle(wall/gran/powder,FixWallGranPowder)
 
 #include "fix_wall_gran.h"
 
+#include "meltdem/coupling/stepped_restitution.h"
+
 #include <string>
 #include <vector>
 
@@ -32,9 +34,20 @@ struct WallGranPowderCoeffs {
   bool kt_from_material = false;  // mindlin tangential with kt NULL
   double kt = 0.0;                // 8 G*, G* of particle and wall
 
+  double e = 0.0;                                // prescribed restitution of 'damping tsuji'
+  meltdem::coupling::SteppedAlphaTable stepped;  // its alpha at each contact step
+  double impact_speed = 0.0;                     // keyword impact_speed (m/s), 0: none
+
   // copy the coefficients into a stock fix's protected arrays
   void apply_material(double *normal_coeffs, double *tangential_coeffs) const;
   void apply_damping(double *normal_coeffs) const;
+  // the speed a wall contact's step is calibrated at: the largest particle speed of fix
+  // powder/dt (half its pair approach speed), else impact_speed; 0: none
+  double contact_speed(class LAMMPS *lmp) const;
+  // the force 'damping tsuji' adds along the wall normal to the stock contact (see
+  // stepped_restitution.h); 0 for the other damping forms
+  double damping_correction(const double *normal_coeffs, double delta, double separation_rate, double reff, double meff,
+                            double dt, double speed) const;
 };
 
 // Reads the keywords the powder wall fixes add to 'fix wall/gran granular ...'
@@ -60,6 +73,7 @@ class FixWallGranPowder : public FixWallGran {
   {
   }
   void init() override;
+  void post_force(int) override;
 
  private:
   // the temporary argument list lives until this constructor returns

@@ -5,6 +5,13 @@
 
 #include "fix_wall_gran_region_powder.h"
 
+#include "atom.h"
+#include "domain.h"
+#include "region.h"
+#include "update.h"
+
+#include <cmath>
+
 using namespace LAMMPS_NS;
 
 FixWallGranRegionPowder::FixWallGranRegionPowder(LAMMPS *lmp, WallGranPowderArgs &&a) :
@@ -17,4 +24,41 @@ void FixWallGranRegionPowder::init()
 {
   FixWallGranRegion::init();
   coeffs.apply_damping(normal_coeffs);
+}
+
+void FixWallGranRegionPowder::post_force(int vflag)
+{
+  FixWallGranRegion::post_force(vflag);
+  if (coeffs.damping != WallGranPowderCoeffs::DAMP_TSUJI_EXACT) return;
+
+  // the stock region contacts (fix_wall_gran_region.cpp post_force), searched one step's
+  // travel further out so that a particle that has just left gets its last damping kick
+  double **x = atom->x, **v = atom->v, **f = atom->f;
+  const double *radius = atom->radius, *rmass = atom->rmass;
+  const int *mask = atom->mask;
+  const double speed = coeffs.contact_speed(lmp), step = update->dt;
+  const int iregion = domain->find_region(idregion);
+  if (iregion < 0) return;  // the stock fix has already stopped on a missing region
+  Region *region = domain->regions[iregion];
+  const int dynamic = region->dynamic_check();
+  double vwall[3] = {0.0, 0.0, 0.0};
+  for (int i = 0; i < atom->nlocal; i++) {
+    if (!(mask[i] & groupbit)) continue;
+    if (!region->match(x[i][0], x[i][1], x[i][2])) continue;
+    const double vmag = sqrt(v[i][0] * v[i][0] + v[i][1] * v[i][1] + v[i][2] * v[i][2]);
+    const int nc = region->surface(x[i][0], x[i][1], x[i][2], radius[i] + step * vmag);
+    for (int ic = 0; ic < nc; ic++) {
+      const double r = region->contact[ic].r;
+      if (!(r > 0.0)) continue;
+      const double n[3] = {region->contact[ic].delx / r, region->contact[ic].dely / r, region->contact[ic].delz / r};
+      if (dynamic) region->velocity_contact(vwall, x[i], ic);
+      const double rate = (v[i][0] - vwall[0]) * n[0] + (v[i][1] - vwall[1]) * n[1] + (v[i][2] - vwall[2]) * n[2];
+      const double rwall = region->contact[ic].radius;
+      const double reff = rwall == 0.0 ? radius[i] : radius[i] * rwall / (radius[i] + rwall);
+      double meff = rmass[i];
+      if (fix_rigid && mass_rigid[i] > 0.0) meff = mass_rigid[i];
+      const double fn = coeffs.damping_correction(normal_coeffs, radius[i] - r, rate, reff, meff, step, speed);
+      for (int k = 0; k < 3; k++) f[i][k] += n[k] * fn;
+    }
+  }
 }

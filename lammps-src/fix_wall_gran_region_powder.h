@@ -25,6 +25,7 @@ class FixWallGranRegionPowder : public FixWallGranRegion {
   {
   }
   void init() override;
+  void post_force(int) override;
 
  private:
   // the temporary argument list lives until this constructor returns

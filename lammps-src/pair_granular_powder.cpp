@@ -2,20 +2,25 @@
 #include "pair_granular_powder.h"
 #include "error.h"
 #include "atom.h"
+#include "comm.h"
 #include "force.h"
 #include "update.h"
 #include "modify.h"
+#include "neigh_list.h"
+#include "fix_powder_dt.h"
 #include "fix_powder_insert.h"
 #include <mpi.h>
 #include "meltdem/coupling/hertz_restitution.h"
+#include <cmath>
 #include <cstring>
 #include <string>
 #include <vector>
 using namespace LAMMPS_NS;
+namespace mc = meltdem::coupling;
 
-// PairGranular keeps normal_coeffs private in this LAMMPS version; an explicit
+// PairGranular keeps its coefficient arrays private in this LAMMPS version; an explicit
 // template instantiation may name private members (C++ [temp.explicit]), which lets
-// the subclass set alpha without forking the stock style.
+// the subclass read and set them without forking the stock style.
 namespace {
 template <typename Tag, typename Tag::type M> struct Rob {
   friend typename Tag::type get(Tag) { return M; }
@@ -25,7 +30,51 @@ struct NormalCoeffsTag {
   friend type get(NormalCoeffsTag);
 };
 template struct Rob<NormalCoeffsTag, &PairGranular::normal_coeffs>;
+struct LimitDampingTag {
+  typedef int **PairGranular::*type;
+  friend type get(LimitDampingTag);
+};
+template struct Rob<LimitDampingTag, &PairGranular::limit_damping>;
+
+// marks the restitution block this style appends to the stock pair section of a restart
+constexpr double RESTART_MAGIC = 20201.5;
 }  // namespace
+
+void PairGranularPowder::settings(int narg, char **arg)
+{
+  // [cutoff] [impact_speed V]: the keyword is ours, the cutoff goes to the stock style
+  std::vector<char *> rest;
+  impact_speed = 0.0;
+  for (int i = 0; i < narg; i++) {
+    if (strcmp(arg[i], "impact_speed") == 0) {
+      if (i + 1 >= narg) error->all(FLERR, "Illegal pair_style granular/powder command: impact_speed needs a value");
+      impact_speed = utils::numeric(FLERR, arg[i + 1], false, lmp);
+      if (!(impact_speed > 0.0))
+        error->all(FLERR, "Illegal pair_style granular/powder command: impact_speed must be > 0 (m/s)");
+      i++;
+    } else
+      rest.push_back(arg[i]);
+  }
+  if (rest.size() > 1)
+    error->all(FLERR, "Illegal pair_style granular/powder command: expected [cutoff] [impact_speed V]");
+  PairGranular::settings((int)rest.size(), rest.data());
+}
+
+int PairGranularPowder::slot(int i, int j) const
+{
+  return i * (atom->ntypes + 1) + j;
+}
+
+void PairGranularPowder::set_exact(int i, int j, double e)
+{
+  const int n = (atom->ntypes + 1) * (atom->ntypes + 1);
+  if ((int)exact_e.size() != n) {
+    exact_e.assign(n, 0.0);
+    alpha_tables.assign(n, mc::SteppedAlphaTable());
+  }
+  exact_e[slot(i, j)] = exact_e[slot(j, i)] = e;
+  if (e > 0.0) alpha_tables[slot(i, j)] = alpha_tables[slot(j, i)] = mc::SteppedAlphaTable(e);
+}
 
 void PairGranularPowder::coeff(int narg, char **arg)
 {
@@ -34,6 +83,7 @@ void PairGranularPowder::coeff(int narg, char **arg)
   int mode = 0;  // 0 none, 1 tsuji (exact e), 2 tsuji/alpha
   double value = 0.0;
   bool hertz = false;  // e depends on alpha alone only for a Hertz contact
+  bool limited = false;
   std::vector<std::string> copy(arg, arg + narg);
   for (int i = 2; i < narg; i++) {
     if ((copy[i] == "hertz/material" && i + 3 < narg) || (copy[i] == "hertz" && i + 2 < narg)) {
@@ -49,6 +99,7 @@ void PairGranularPowder::coeff(int narg, char **arg)
         error->all(FLERR, "Illegal pair_coeff command: {} Poisson's ratio {} must lie in (-1,0.5]", copy[i], nu);
     }
     if (copy[i] == "hooke" || copy[i] == "dmt" || copy[i] == "jkr") hertz = false;
+    if (copy[i] == "limit_damping") limited = true;
     if (copy[i] == "damping" && i + 1 < narg) {
       if (copy[i + 1] == "tsuji")
         mode = 1;
@@ -67,18 +118,23 @@ void PairGranularPowder::coeff(int narg, char **arg)
                       "(use tsuji/alpha otherwise)");
   if (mode == 1 && (value <= 0.0 || value > 1.0))
     error->all(FLERR, "Illegal pair_coeff command: restitution e must lie in (0,1] for damping tsuji");
+  if (mode == 1 && limited)
+    error->all(FLERR, "Illegal pair_coeff command: damping tsuji applies its damping over the whole step and "
+                      "cannot be combined with limit_damping (use tsuji/alpha)");
   // with tsuji/alpha the stock parser still needs a valid e in hertz/material: use 0.5
   std::vector<char *> argv;
   for (auto &s : copy) argv.push_back(const_cast<char *>(s.c_str()));
   PairGranular::coeff((int)argv.size(), argv.data());
-  if (mode == 0) return;
-  const double alpha = (mode == 1) ? meltdem::coupling::alpha_for_restitution(value) : value;
   int ilo, ihi, jlo, jhi;
   utils::bounds(FLERR, arg[0], 1, atom->ntypes, ilo, ihi, error);
   utils::bounds(FLERR, arg[1], 1, atom->ntypes, jlo, jhi, error);
+  // the stock alpha stays the continuous one: the tangential damping scales with it
+  const double alpha = (mode == 1) ? mc::alpha_for_restitution(value) : value;
   for (int i = ilo; i <= ihi; i++)
     for (int j = MAX(jlo, i); j <= jhi; j++)
       if (setflag[i][j]) {
+        set_exact(i, j, mode == 1 ? value : 0.0);
+        if (mode == 0) continue;
         double ***nc = this->*get(NormalCoeffsTag());
         nc[i][j][1] = nc[j][i][1] = alpha;
       }
@@ -90,7 +146,9 @@ void PairGranularPowder::init_style()
   PairGranular::init_style();
   // the stock style sizes its cutoff from existing particles and fix pour/deposit only
   // (an empty box gives 0): count the particles fix powder/insert will insert as well
+  fix_dt = nullptr;
   for (int i = 0; i < modify->nfix; i++) {
+    if (auto *dt_fix = dynamic_cast<FixPowderDt *>(modify->fix[i])) fix_dt = dt_fix;
     auto *ins = dynamic_cast<FixPowderInsert *>(modify->fix[i]);
     if (!ins) continue;
     double rnew = 0.5 * ins->max_new_diameter(), rall = 0.0;
@@ -106,4 +164,123 @@ double PairGranularPowder::init_one(int i, int j)
   if (setflag[i][j] == 0 && setflag[j][i] == 0)
     error->all(FLERR, "Pair granular/powder: pair_coeff {} {} not set (mixed pairs must be given explicitly)", i, j);
   return PairGranular::init_one(i, j);
+}
+
+double PairGranularPowder::current_impact_speed() const
+{
+  // the speed the step is sized for (fix powder/dt), else the pair_style keyword; 0: none
+  if (fix_dt && fix_dt->approach_speed() > 0.0) return fix_dt->approach_speed();
+  return impact_speed;
+}
+
+void PairGranularPowder::compute(int eflag, int vflag)
+{
+  PairGranular::compute(eflag, vflag);
+  bool any = false;
+  for (double e : exact_e) any = any || e > 0.0;
+  if (any) add_stepped_damping(eflag, vflag);
+}
+
+void PairGranularPowder::add_stepped_damping(int /*eflag*/, int /*vflag*/)
+{
+  // Replace the stock normal damping of 'damping tsuji' pairs by the stepped form of
+  // meltdem/coupling/stepped_restitution.h, with alpha for this contact's step.
+  double **x = atom->x, **v = atom->v, **f = atom->f;
+  const double *radius = atom->radius, *rmass = atom->rmass;
+  const int *type = atom->type, *mask = atom->mask;
+  const int nlocal = atom->nlocal;
+  const int newton_pair = force->newton_pair;
+  double ***nc = this->*get(NormalCoeffsTag());
+  const double step = update->dt;
+  const double speed = current_impact_speed();
+
+  for (int ii = 0; ii < list->inum; ii++) {
+    const int i = list->ilist[ii];
+    const int itype = type[i];
+    const int *jlist = list->firstneigh[i];
+    for (int jj = 0; jj < list->numneigh[i]; jj++) {
+      const int j = jlist[jj] & NEIGHMASK;
+      const int jtype = type[j];
+      const double e = exact_e[slot(itype, jtype)];
+      if (e <= 0.0) continue;
+      const double delx = x[i][0] - x[j][0], dely = x[i][1] - x[j][1], delz = x[i][2] - x[j][2];
+      const double rsq = delx * delx + dely * dely + delz * delz;
+      const double radsum = radius[i] + radius[j];
+      const double vr[3] = {v[i][0] - v[j][0], v[i][1] - v[j][1], v[i][2] - v[j][2]};
+      if (rsq >= radsum * radsum) {
+        // apart now: only a pair that overlapped one step ago gets its last kick
+        const double reach = radsum + step * std::sqrt(vr[0] * vr[0] + vr[1] * vr[1] + vr[2] * vr[2]);
+        if (rsq >= reach * reach) continue;
+      }
+      const double r = std::sqrt(rsq), rinv = 1.0 / r;
+      const double nx = delx * rinv, ny = dely * rinv, nz = delz * rinv;
+      const double vnnr = vr[0] * nx + vr[1] * ny + vr[2] * nz;
+      const double delta = radsum - r, delta_prev = delta + step * vnnr;
+      if (delta <= 0.0 && delta_prev <= 0.0) continue;
+
+      double mi = rmass[i], mj = rmass[j];
+      if (fix_rigid) {
+        if (mass_rigid[i] > 0.0) mi = mass_rigid[i];
+        if (mass_rigid[j] > 0.0) mj = mass_rigid[j];
+      }
+      double meff = mi * mj / (mi + mj);
+      if (mask[i] & freeze_group_bit) meff = mj;
+      if (mask[j] & freeze_group_bit) meff = mi;
+      const double reff = radius[i] * radius[j] / radsum;
+      const double hertz_k = nc[itype][jtype][0] * std::sqrt(reff);
+
+      const double h = speed > 0.0 ? mc::contact_step(step, speed, hertz_k, meff) : 0.0;
+      const double alpha = alpha_tables[slot(itype, jtype)].alpha(h);
+      const double fn = mc::stepped_damping_correction(alpha, nc[itype][jtype][1], hertz_k, meff, delta, vnnr, step);
+
+      const double fx = nx * fn, fy = ny * fn, fz = nz * fn;
+      f[i][0] += fx;
+      f[i][1] += fy;
+      f[i][2] += fz;
+      if (newton_pair || j < nlocal) {
+        f[j][0] -= fx;
+        f[j][1] -= fy;
+        f[j][2] -= fz;
+      }
+      if (evflag) ev_tally_xyz(i, j, nlocal, newton_pair, 0.0, 0.0, fx, fy, fz, delx, dely, delz);
+    }
+  }
+}
+
+void PairGranularPowder::write_restart(FILE *fp)
+{
+  PairGranular::write_restart(fp);
+  // the prescribed e per type pair, behind a marker (older restarts have none)
+  if (comm->me != 0) return;
+  const int n = (atom->ntypes + 1) * (atom->ntypes + 1);
+  std::vector<double> block(n, 0.0);
+  if ((int)exact_e.size() == n) block = exact_e;
+  fwrite(&RESTART_MAGIC, sizeof(double), 1, fp);
+  fwrite(&impact_speed, sizeof(double), 1, fp);
+  fwrite(block.data(), sizeof(double), n, fp);
+}
+
+void PairGranularPowder::read_restart(FILE *fp)
+{
+  PairGranular::read_restart(fp);
+  const int n = (atom->ntypes + 1) * (atom->ntypes + 1);
+  std::vector<double> block(n, 0.0);
+  int found = 0;
+  double speed = 0.0;
+  if (comm->me == 0) {
+    const long at = ftell(fp);
+    double magic = 0.0;
+    if (fread(&magic, sizeof(double), 1, fp) == 1 && magic == RESTART_MAGIC &&
+        fread(&speed, sizeof(double), 1, fp) == 1 && fread(block.data(), sizeof(double), n, fp) == (size_t)n)
+      found = 1;
+    else
+      fseek(fp, at, SEEK_SET);
+  }
+  MPI_Bcast(&found, 1, MPI_INT, 0, world);
+  if (!found) return;
+  MPI_Bcast(&speed, 1, MPI_DOUBLE, 0, world);
+  MPI_Bcast(block.data(), n, MPI_DOUBLE, 0, world);
+  impact_speed = speed;
+  for (int i = 1; i <= atom->ntypes; i++)
+    for (int j = i; j <= atom->ntypes; j++) set_exact(i, j, block[slot(i, j)]);
 }

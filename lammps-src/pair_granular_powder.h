@@ -7,13 +7,34 @@ PairStyle(granular/powder,PairGranularPowder)
 #ifndef MELTDEM_PAIR_GRANULAR_POWDER_H
 #define MELTDEM_PAIR_GRANULAR_POWDER_H
 #include "pair_granular.h"
+
+#include "meltdem/coupling/stepped_restitution.h"
+
+#include <vector>
+
 namespace LAMMPS_NS {
 class PairGranularPowder : public PairGranular {
  public:
   PairGranularPowder(class LAMMPS *lmp) : PairGranular(lmp) {}
+  void compute(int, int) override;
+  void settings(int, char **) override;
   void coeff(int, char **) override;
   void init_style() override;
   double init_one(int, int) override;
+  void write_restart(FILE *) override;
+  void read_restart(FILE *) override;
+
+ private:
+  // 'damping tsuji' type pairs: the prescribed e (0: stock damping) and alpha(h) for it
+  std::vector<double> exact_e;
+  std::vector<meltdem::coupling::SteppedAlphaTable> alpha_tables;
+  double impact_speed = 0.0;            // pair_style keyword impact_speed (m/s), 0: none
+  class FixPowderDt *fix_dt = nullptr;  // the step's approach speed, when there is one
+
+  int slot(int i, int j) const;  // index of type pair i j in exact_e and alpha_tables
+  void set_exact(int i, int j, double e);
+  double current_impact_speed() const;
+  void add_stepped_damping(int eflag, int vflag);
 };
 }  // namespace LAMMPS_NS
 #endif

@@ -1,0 +1,72 @@
+#pragma once
+// The Hertz contact with Tsuji damping as a time-stepped run integrates it, and the
+// damping coefficient alpha that returns a prescribed restitution at that step.
+//
+// LAMMPS's velocity-Verlet evaluates the force at x(n) with the half-step velocity
+// v(n-1/2), so the stock damping alpha sqrt(m* K) delta^(1/4) v acts half a step late
+// and its impulse depends on where in a step the contact starts (e = 0.3 at 20 steps per
+// contact: 0.287 to 0.300). MeltDEM's styles apply the damping as the change over the
+// step just taken of its potential-like integral
+//   D(delta) = alpha sqrt(m* K) 4/5 delta^(5/4),   F_damp(n) = (D(delta_n) - D(delta_n-1)) / dt,
+// (delta_n-1 = delta_n - dt delta', known from v(n-1/2)); the damping impulses of a
+// contact then sum exactly to D(end) - D(start) = 0 as in the continuous contact, and
+// e no longer depends on the phase to within 0.2 % at 10 steps per contact. What remains
+// is a smooth bias in the dimensionless step h = dt v0^(1/5) (K/m*)^(2/5), removed by
+// choosing alpha for that h (alpha_for_restitution_at_step).
+
+namespace meltdem::coupling {
+
+// Dimensionless step of a contact: dt in units of delta0/v0, delta0 = (m* v0^2/K)^(2/5),
+// K = 4/3 E* sqrt(R*) (the Hertz force K delta^(3/2)), m* the effective mass, v0 the
+// impact speed.
+double contact_step(double dt, double impact_speed, double hertz_k, double meff);
+
+// Normal damping force of the stepped contact (repulsive > 0): (D(delta) - D(delta_prev))/dt
+// with D = alpha sqrt(meff K) 4/5 max(delta,0)^(5/4). delta_prev is the overlap one step
+// earlier; a pair that has just separated (delta <= 0 < delta_prev) gets its last kick.
+double stepped_damping_force(double alpha, double hertz_k, double meff, double delta, double delta_prev, double dt);
+
+// What a style adds to the stock force of LAMMPS's granular contact to turn its damping
+// -alpha_stock sqrt(meff K) delta^(1/4) separation_rate (present only while delta > 0)
+// into the stepped damping with alpha; separation_rate = relative normal velocity at
+// v(n-1/2), > 0 apart, so the overlap one step earlier is delta + dt separation_rate.
+// Returns the normal force on the particle (repulsive > 0).
+double stepped_damping_correction(double alpha, double alpha_stock, double hertz_k, double meff, double delta,
+                                  double separation_rate, double dt);
+
+// Restitution of a head-on contact integrated by velocity-Verlet with the stepped damping
+// in dimensionless form (x'' = -x^(3/2) - damping, x'(0-) = 1) at step h; the contact starts
+// a fraction 'phase' in [0, 1) of a step before the first step that overlaps.
+double restitution_at_step(double alpha, double h, double phase);
+
+// Its mean over the phase (16 equally spaced phases).
+double mean_restitution_at_step(double alpha, double h);
+
+// alpha whose phase-mean restitution at step h is e (e in (0, 1], h in [0, max_contact_step]);
+// h = 0 gives alpha_for_restitution(e). Throws std::invalid_argument outside.
+double alpha_for_restitution_at_step(double e, double h);
+
+// Largest h calibrated: 1.0 is 3.2 steps per contact (the elastic contact lasts
+// 3.22 delta0/v0); below about 3 steps e(alpha) stops decreasing with alpha.
+constexpr double max_contact_step = 1.0;
+
+// alpha(h) for one e on a uniform grid of h in [0, max_contact_step] (alpha is nearly
+// linear in h: 17 nodes interpolate it to ~1e-5), each node computed when first needed;
+// h beyond the grid, or where no alpha reaches e (tiny e at the largest h), takes the
+// value of the last node that does.
+class SteppedAlphaTable {
+ public:
+  SteppedAlphaTable() = default;
+  explicit SteppedAlphaTable(double e) : e_(e) {}
+  double alpha(double h) const;
+  double restitution() const { return e_; }
+
+ private:
+  static constexpr int points = 17;
+  double e_ = 0.0;
+  mutable double alpha_[points] = {};
+  mutable bool known_[points] = {};
+  double node(int k) const;
+};
+
+}  // namespace meltdem::coupling

@@ -1,0 +1,112 @@
+#!/usr/bin/python3
+"""Restitution at the step a run takes (issue 20): head-on contacts of 30 um steel spheres
+(E = 200 GPa, nu = 0.3) at 2 m/s with 'damping tsuji' integrated in S = 5, 10 and 20 steps
+per contact, for e = 0.1 ... 0.95:
+  * pair, monodisperse, dt from fix powder/dt steps S (the setting users run);
+  * pair, polydisperse (30 and 20 um), dt = t_c/S fixed, pair_style ... impact_speed 2;
+  * wall (fix wall/gran/powder, plane z = 0), dt = t_c(sphere-wall)/S fixed, impact_speed 2;
+  * wall with fix powder/dt steps S (the wall contact then has 1.32 S steps);
+  * region wall (fix wall/gran/region/powder, the face z = 0 of a block), as the plane.
+Each case at three phases (where within a step the contact starts). Measured e against the
+prescribed e: within 0.5 % at every phase for S = 10 and 20; at S = 5 the phase mean within
+0.5 % and the worst phase reported (expected to miss: see doc/pair_granular_powder.rst)."""
+import sys
+
+from meltdem.testing.dem import ESTAR, RHO, mass, t_contact
+from meltdem.testing.lammps_run import run, thermo_runs
+from meltdem.testing.report import check_relative, report
+
+T = "dem.restitution.at_step"
+U = 2.0
+PHASES = (0.1, 0.4, 0.7)
+E_LIST = (0.1, 0.3, 0.5, 0.7, 0.95)
+S_LIST = (5, 10, 20)
+R1 = 15e-6
+
+HEAD = """units si
+atom_style sphere
+atom_modify map array
+boundary f f f
+region box block -2e-4 2e-4 -1e-4 1e-4 -1e-4 1e-4
+create_box 1 box
+comm_modify vel yes
+neighbor 2e-5 bin
+neigh_modify delay 0
+"""
+
+
+def pair_case(e, S, phase, R2=R1, powder_dt=True):
+    m1, m2 = mass(R1), mass(R2)
+    tc = t_contact(m1, m2, R1, R2, U)
+    dt = tc / S
+    gap = (3 + phase) * U * dt
+    text = HEAD + f"""pair_style granular/powder{'' if powder_dt else f' impact_speed {U}'}
+pair_coeff * * hertz/material 200e9 {e} 0.3 damping tsuji tangential linear_nohistory 1.0 0.0
+create_atoms 1 single {-R1 - gap / 2} 0 0
+create_atoms 1 single {R2 + gap / 2} 0 0
+set atom 1 diameter {2 * R1} density {RHO}
+set atom 2 diameter {2 * R2} density {RHO}
+velocity all set 0 0 0
+set atom 1 vx {U * m2 / (m1 + m2)}
+set atom 2 vx {-U * m1 / (m1 + m2)}
+fix nve all nve/sphere
+{f'fix dt all powder/dt steps {S}' if powder_dt else f'timestep {dt}'}
+variable er equal (vx[2]-vx[1])/{U}
+thermo_style custom step v_er
+thermo_modify format float %.15g
+thermo 1000000
+run {int(8 * S) + 20}
+"""
+    return thermo_runs(run(text)[1])[0][-1]["v_er"]
+
+
+def wall_case(e, S, phase, powder_dt=False, region=False):
+    m = mass(R1)
+    # sphere on a wall of the same material: m* = m, R* = R, E* as for a pair
+    tc = 2.87 * (m * m / (R1 * ESTAR * ESTAR * U)) ** 0.2
+    dt = tc / S
+    gap = (3 + phase) * U * dt
+    speed = '' if powder_dt else f' impact_speed {U}'
+    text = HEAD.replace("boundary f f f", "boundary p p f").replace("-1e-4 1e-4\ncreate", "0 2e-4\ncreate") + f"""
+pair_style granular/powder {2 * R1}
+pair_coeff * * hertz/material 200e9 {e} 0.3 damping tsuji tangential linear_nohistory 1.0 0.0
+create_atoms 1 single 0 0 {R1 + gap}
+set atom 1 diameter {2 * R1} density {RHO}
+velocity all set 0 0 {-U}
+region cup block -9e-5 9e-5 -9e-5 9e-5 0 2e-4 side in
+fix wall all wall/gran/{'region/' if region else ''}powder granular hertz/material 200e9 {e} 0.3 damping tsuji{speed} \
+tangential linear_nohistory 1.0 0.0 {'region cup' if region else 'zplane 0.0 NULL'}
+fix nve all nve/sphere
+{f'fix dt all powder/dt steps {S}' if powder_dt else f'timestep {dt}'}
+variable er equal vz[1]/{U}
+thermo_style custom step v_er
+thermo_modify format float %.15g
+thermo 1000000
+run {int(8 * S) + 20}
+"""
+    return thermo_runs(run(text)[1])[0][-1]["v_er"]
+
+
+CASES = [
+    ("pair, fix powder/dt", lambda e, S, p: pair_case(e, S, p)),
+    ("pair 30/20 um", lambda e, S, p: pair_case(e, S, p, R2=10e-6, powder_dt=False)),
+    ("wall", lambda e, S, p: wall_case(e, S, p)),
+    ("wall, fix powder/dt", lambda e, S, p: wall_case(e, S, p, powder_dt=True)),
+    ("region wall", lambda e, S, p: wall_case(e, S, p, region=True)),
+]
+
+ok = True
+for name, case in CASES:
+    for e in E_LIST:
+        for S in S_LIST:
+            values = [case(e, S, p) for p in PHASES]
+            if S >= 10:
+                for p, v in zip(PHASES, values):
+                    ok &= check_relative(T, f"{name}: e at S = {S}, phase {p} (prescribed {e})", v, e, 0.005)
+            else:
+                mean = sum(values) / len(values)
+                ok &= check_relative(T, f"{name}: phase-mean e at S = {S} (prescribed {e})", mean, e, 0.005)
+                worst = max(values, key=lambda v: abs(v - e))
+                report(T, f"{name}: worst-phase e at S = {S} (prescribed {e})", worst, e, 0.005,
+                       abs(worst / e - 1) <= 0.005, xfail="velocity-Verlet's phase scatter at 5 steps per contact")
+sys.exit(0 if ok else 1)
