@@ -60,8 +60,12 @@ template struct Expose<EmodTag, &PairGranular::Emod>;
 template struct Expose<PoissTag, &PairGranular::poiss>;
 template struct Expose<NormalTag, &PairGranular::normal_model>;
 
-// PairGranular's enum of normal models (pair_granular.cpp)
-constexpr int HERTZ_MATERIAL = 2;
+// PairGranular's enum of normal models (pair_granular.cpp); the ones with E and nu
+constexpr int HERTZ_MATERIAL = 2, DMT = 3, JKR = 4;
+bool has_material(int model)
+{
+  return model == HERTZ_MATERIAL || model == DMT || model == JKR;
+}
 constexpr double BIG = std::numeric_limits<double>::max();
 }  // namespace
 
@@ -186,15 +190,16 @@ void FixPowderDt::read_pair_modulus()
       int mod;
       if (setflag[i][j]) {
         mod = model[i][j];
-        if (mod == HERTZ_MATERIAL) Es = modulus(i, j, E[i][j], nu[i][j], E[i][j], nu[i][j]);
+        if (has_material(mod)) Es = modulus(i, j, E[i][j], nu[i][j], E[i][j], nu[i][j]);
       } else if (setflag[i][i] && setflag[j][j]) {
-        mod = (model[i][i] == HERTZ_MATERIAL && model[j][j] == HERTZ_MATERIAL) ? HERTZ_MATERIAL : -1;
+        mod = (has_material(model[i][i]) && has_material(model[j][j])) ? HERTZ_MATERIAL : -1;
         if (mod == HERTZ_MATERIAL) Es = modulus(i, j, E[i][i], nu[i][i], E[j][j], nu[j][j]);
       } else
         error->all(FLERR, "Fix powder/dt: pair coefficients for types {} {} are not set", i, j);
-      if (mod != HERTZ_MATERIAL)
+      // dmt and jkr: the Hertz contact time of their E and nu (adhesion ignored)
+      if (!has_material(mod))
         error->all(FLERR,
-                   "Fix powder/dt needs Young's modulus: pair_style {} must use hertz/material "
+                   "Fix powder/dt needs Young's modulus: pair_style {} must use hertz/material, dmt or jkr "
                    "for types {} {}",
                    force->pair_style, i, j);
       estar = std::max(estar, Es);

@@ -56,7 +56,7 @@ double WallGranPowderCoeffs::contact_speed(LAMMPS *lmp) const
 double WallGranPowderCoeffs::damping_correction(const double *normal_coeffs, double delta, double separation_rate,
                                                 double reff, double meff, double dt, double speed) const
 {
-  if (damping != DAMP_TSUJI_EXACT) return 0.0;
+  if (damping != DAMP_TSUJI_EXACT || e <= 0.0) return 0.0;
   const double hertz_k = normal_coeffs[0] * std::sqrt(reff);
   const double h = speed > 0.0 ? meltdem::coupling::contact_step(dt, speed, hertz_k, meff) : 0.0;
   return meltdem::coupling::stepped_damping_correction(stepped.alpha(h), normal_coeffs[1], hertz_k, meff, delta,
@@ -77,6 +77,7 @@ WallGranPowderArgs::WallGranPowderArgs(LAMMPS *lmp, int narg, char **arg, bool r
 
   words.assign(arg, arg + narg);
   enum { NONE, HOOKE, HERTZ, MATERIAL } model = NONE;
+  bool jkr = false;
   double E = 0.0, nu = 0.0, e = 0.0, Ew = 0.0, nuw = 0.0;
   bool wall_given = false, rigid = false, kt_null = false, found_wallstyle = false;
   auto need = [&](size_t i, size_t n, const char *what) {
@@ -104,6 +105,7 @@ WallGranPowderArgs::WallGranPowderArgs(LAMMPS *lmp, int narg, char **arg, bool r
       const size_t n = (w == "hertz/material") ? 3 : 4;
       need(i, n, w.c_str());
       model = MATERIAL;
+      jkr = w == "jkr";
       E = num(i + 1);
       e = num(i + 2);
       nu = num(i + 3);
@@ -160,9 +162,10 @@ WallGranPowderArgs::WallGranPowderArgs(LAMMPS *lmp, int narg, char **arg, bool r
                region_wall ? "region ID" : "xplane, yplane, zplane or zcylinder");
 
   if (coeffs.damping == WallGranPowderCoeffs::DAMP_TSUJI_EXACT) {
-    // e depends on alpha alone only for a Hertz contact (delta^3/2 spring, delta^1/4 damping)
+    // e depends on alpha alone for a Hertz contact (delta^3/2 spring, delta^1/4 damping); dmt and
+    // jkr get the alpha of their non-cohesive limit
     if (model != MATERIAL && model != HERTZ)
-      error->all(FLERR, "Fix {}: damping tsuji needs normal model hertz/material or hertz", style);
+      error->all(FLERR, "Fix {}: damping tsuji needs normal model hertz/material, hertz, dmt or jkr", style);
     if (e <= 0.0 || e > 1.0)
       error->all(FLERR, "Illegal fix {} command: restitution e must lie in (0,1] for damping tsuji", style);
     for (const auto &w : words)
@@ -172,8 +175,10 @@ WallGranPowderArgs::WallGranPowderArgs(LAMMPS *lmp, int narg, char **arg, bool r
                    "with limit_damping (use tsuji/alpha)",
                    style);
     coeffs.alpha = meltdem::coupling::alpha_for_restitution(e);
-    coeffs.e = e;
-    coeffs.stepped = meltdem::coupling::SteppedAlphaTable(e);
+    if (!jkr) {
+      coeffs.e = e;
+      coeffs.stepped = meltdem::coupling::SteppedAlphaTable(e);
+    }
   }
   if (wall_given && model != MATERIAL)
     error->all(FLERR, "Fix {}: wall_material needs normal model hertz/material, dmt or jkr", style);
@@ -212,7 +217,7 @@ void FixWallGranPowder::init()
 void FixWallGranPowder::post_force(int vflag)
 {
   FixWallGran::post_force(vflag);
-  if (coeffs.damping != WallGranPowderCoeffs::DAMP_TSUJI_EXACT || wallstyle == REGION) return;
+  if (coeffs.damping != WallGranPowderCoeffs::DAMP_TSUJI_EXACT || coeffs.e <= 0.0 || wallstyle == REGION) return;
 
   // the stock wall geometry (fix_wall_gran.cpp post_force) for the stepped damping
   double wlo = lo, whi = hi, vwall[3] = {0.0, 0.0, 0.0};

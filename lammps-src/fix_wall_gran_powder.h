@@ -34,7 +34,7 @@ struct WallGranPowderCoeffs {
   bool kt_from_material = false;  // mindlin tangential with kt NULL
   double kt = 0.0;                // 8 G*, G* of particle and wall
 
-  double e = 0.0;                                // prescribed restitution of 'damping tsuji'
+  double e = 0.0;  // prescribed e of 'damping tsuji' with stepped damping (0: none; jkr damps as the stock)
   meltdem::coupling::SteppedAlphaTable stepped;  // its alpha at each contact step
   double impact_speed = 0.0;                     // keyword impact_speed (m/s), 0: none
 

@@ -29,7 +29,7 @@ void FixWallGranRegionPowder::init()
 void FixWallGranRegionPowder::post_force(int vflag)
 {
   FixWallGranRegion::post_force(vflag);
-  if (coeffs.damping != WallGranPowderCoeffs::DAMP_TSUJI_EXACT) return;
+  if (coeffs.damping != WallGranPowderCoeffs::DAMP_TSUJI_EXACT || coeffs.e <= 0.0) return;
 
   // the stock region contacts (fix_wall_gran_region.cpp post_force), searched one step's
   // travel further out so that a particle that has just left gets its last damping kick

