@@ -26,7 +26,7 @@ os.environ.setdefault("MELTDEM_SOURCE_DIR", ROOT)
 from scipy.optimize import brentq  # noqa: E402
 
 from meltdem.analysis.hertz import restitution_for_alpha  # noqa: E402
-from meltdem.testing.dem import RHO, mass, t_contact  # noqa: E402
+from meltdem.testing.dem import head_on, mass, t_contact  # noqa: E402
 from meltdem.testing.lammps_run import run, thermo_runs  # noqa: E402
 
 R, U = 15e-6, 2.0
@@ -38,7 +38,7 @@ STYLES = ("granular", "continuous", "granular/powder")
 
 
 def continuous_alpha(e):
-    return brentq(lambda a: restitution_for_alpha(a) - e, 0.0, 3.0, xtol=1e-12)
+    return brentq(lambda a: restitution_for_alpha(a) - e, 0.0, 2.0, xtol=1e-12)
 
 
 def collide(style, e, S, phase, speed=U, fixed_dt=None):
@@ -48,28 +48,11 @@ def collide(style, e, S, phase, speed=U, fixed_dt=None):
     if style == "continuous":
         style, damping = "granular/powder", f"tsuji/alpha {continuous_alpha(e)!r}"
     dt = fixed_dt or t_contact(mass(R), mass(R), R, R, U) / S
-    gap = (3 + phase) * speed * dt
     step = f"timestep {fixed_dt}" if fixed_dt else f"fix dt all powder/dt steps {S}"
     pair = "granular/powder impact_speed 2.0" if (fixed_dt and style == "granular/powder") else style
-    text = f"""units si
-atom_style sphere
-atom_modify map array
-boundary f f f
-region box block -2e-4 2e-4 -1e-4 1e-4 -1e-4 1e-4
-create_box 1 box
-comm_modify vel yes
-neighbor 2e-5 bin
-neigh_modify delay 0
-pair_style {pair}
-pair_coeff * * hertz/material 200e9 {e} 0.3 damping {damping} tangential linear_nohistory 1.0 0.0
-create_atoms 1 single {-R - gap / 2} 0 0
-create_atoms 1 single {R + gap / 2} 0 0
-set group all diameter {2 * R} density {RHO}
-set atom 1 vx {speed / 2}
-set atom 2 vx {-speed / 2}
-fix nve all nve/sphere
-{step}
-variable er equal (vx[2]-vx[1])/{speed}
+    text = head_on(f"hertz/material 200e9 {e} 0.3 damping {damping} tangential linear_nohistory 1.0 0.0", speed,
+                   (3 + phase) * speed * dt, R, R, pair)
+    text += f"""{step}
 thermo_style custom step v_er
 thermo_modify format float %.15g
 thermo 1000000

@@ -6,19 +6,25 @@ import math
 E, NU, RHO = 200e9, 0.3, 7900.0
 ESTAR = 1.0 / (2.0 * (1.0 - NU * NU) / E)  # eq. 3.2, same material
 
-# two steel spheres on the x axis in a closed box, elastic Hertz contact (no damping,
-# no friction) so the contact is the one of eq. 3.1
-TWO_SPHERES = """units si
+
+def sphere_box(boundary="f f f", box="-2e-4 2e-4 -1e-4 1e-4 -1e-4 1e-4", skin=2e-5):
+    """Opening of a granular input in SI units: one atom type, spheres, ghost velocities."""
+    return f"""units si
 atom_style sphere
 atom_modify map array
-boundary f f f
-region box block -2e-4 2e-4 -1e-4 1e-4 -1e-4 1e-4
+boundary {boundary}
+region box block {box}
 create_box 1 box
 comm_modify vel yes
-neighbor 2e-5 bin
+neighbor {skin} bin
 neigh_modify delay 0
-pair_style granular
-pair_coeff * * hertz/material {E} 0.0 {NU} damping velocity tangential linear_nohistory 0 0
+"""
+
+
+# two steel spheres on the x axis in a closed box; the contact is pair_style and pair_coeff's
+# model arguments
+SPHERES_ON_X = sphere_box() + """pair_style {pair_style}
+pair_coeff * * {contact}
 create_atoms 1 single {x1} 0 0
 create_atoms 1 single {x2} 0 0
 set atom 1 diameter {d1} density {RHO}
@@ -28,10 +34,23 @@ set atom 1 vx {v1}
 set atom 2 vx {v2}
 fix nve all nve/sphere
 """
+# elastic Hertz contact (no damping, no friction): the contact of eq. 3.1
+ELASTIC = f"hertz/material {E} 0.0 {NU} damping velocity tangential linear_nohistory 0 0"
 
 
 def two_spheres(x1, x2, d1, d2, v1, v2):
-    return TWO_SPHERES.format(E=E, NU=NU, RHO=RHO, x1=x1, x2=x2, d1=d1, d2=d2, v1=v1, v2=v2)
+    return SPHERES_ON_X.format(pair_style="granular", contact=ELASTIC, RHO=RHO, x1=x1, x2=x2, d1=d1, d2=d2, v1=v1,
+                               v2=v2)
+
+
+def head_on(contact, speed, gap, r1=15e-6, r2=15e-6, pair_style="granular/powder"):
+    """Spheres of radii r1, r2 a gap apart on the x axis, approaching at relative speed
+    'speed' with zero total momentum; the variable er is their restitution (relative speed
+    after over before). Append the step control, the run and the output."""
+    m1, m2 = mass(r1), mass(r2)
+    return SPHERES_ON_X.format(pair_style=pair_style, contact=contact, RHO=RHO, x1=-r1 - gap / 2, x2=r2 + gap / 2,
+                               d1=2 * r1, d2=2 * r2, v1=speed * m2 / (m1 + m2),
+                               v2=-speed * m1 / (m1 + m2)) + f"variable er equal (vx[2]-vx[1])/{speed}\n"
 
 
 def mass(R, rho=RHO):

@@ -10,6 +10,7 @@ measured pull-off is the largest tensile normal force. Tolerance 1 %."""
 import math
 import sys
 
+from meltdem.testing.dem import sphere_box
 from meltdem.testing.lammps_run import run, thermo_runs
 from meltdem.testing.report import check_relative
 
@@ -27,15 +28,7 @@ run {STEPS}
 
 def pair(model):
     r1, r2 = 15e-6, 10e-6
-    text = f"""units si
-atom_style sphere
-atom_modify map array
-boundary f f f
-region box block -1e-4 1e-4 -1e-4 1e-4 -1e-4 1e-4
-create_box 1 box
-comm_modify vel yes
-neighbor 1e-6 bin
-pair_style granular/powder
+    text = sphere_box("f f f", "-1e-4 1e-4 -1e-4 1e-4 -1e-4 1e-4", 1e-6) + f"""pair_style granular/powder
 pair_coeff * * {model} {E} 0.5 {NU} {GAMMA} damping tsuji tangential mindlin NULL 1.0 0.5
 create_atoms 1 single 0 0 0
 create_atoms 1 single {r1 + r2 - DELTA0} 0 0
@@ -53,15 +46,7 @@ timestep {DT}
 
 def wall(model):
     r = 15e-6
-    text = f"""units si
-atom_style sphere
-atom_modify map array
-boundary p p f
-region box block -1e-4 1e-4 -1e-4 1e-4 0 1e-4
-create_box 1 box
-comm_modify vel yes
-neighbor 1e-6 bin
-pair_style granular/powder {2 * r}
+    text = sphere_box("p p f", "-1e-4 1e-4 -1e-4 1e-4 0 1e-4", 1e-6) + f"""pair_style granular/powder {2 * r}
 pair_coeff * * hertz/material {E} 0.5 {NU} damping tsuji tangential linear_nohistory 1.0 0.0
 create_atoms 1 single 0 0 {r - DELTA0}
 set atom 1 diameter {2 * r} density {RHO}

@@ -13,6 +13,7 @@ import sys
 
 import numpy as np
 
+from meltdem.testing.dem import sphere_box
 from meltdem.testing.lammps_run import run, thermo_runs
 from meltdem.testing.report import check_relative
 
@@ -41,15 +42,7 @@ def decel(text):
 
 
 def wall():
-    text = f"""units si
-atom_style sphere
-atom_modify map array
-boundary p p f
-region box block -1e-4 1e-4 -1e-4 1e-4 0 1e-4
-create_box 1 box
-comm_modify vel yes
-neighbor 2e-6 bin
-pair_style granular/powder {2 * R}
+    text = sphere_box("p p f", "-1e-4 1e-4 -1e-4 1e-4 0 1e-4", 2e-6) + f"""pair_style granular/powder {2 * R}
 pair_coeff * * {MODEL}
 create_atoms 1 single 0 0 {R}
 set atom 1 diameter {2 * R} density {RHO}
@@ -63,15 +56,7 @@ fix wall all wall/gran/powder granular {MODEL} zplane 0.0 NULL
 
 def on_sphere():
     rb = 0.1
-    text = f"""units si
-atom_style sphere
-atom_modify map array
-boundary f f f
-region box block -0.11 0.11 -0.11 0.11 -0.11 0.11
-create_box 1 box
-comm_modify vel yes
-neighbor 2e-6 bin
-pair_style granular/powder
+    text = sphere_box("f f f", "-0.11 0.11 -0.11 0.11 -0.11 0.11", 2e-6) + f"""pair_style granular/powder
 pair_coeff * * {MODEL}
 create_atoms 1 single 0 0 {rb + R}
 create_atoms 1 single 0 0 0

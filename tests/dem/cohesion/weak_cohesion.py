@@ -7,7 +7,7 @@ continuous alpha in the stock force, which damps with the JKR contact radius) at
 contact within 1 %."""
 import sys
 
-from meltdem.testing.dem import RHO, mass, t_contact
+from meltdem.testing.dem import head_on, mass, t_contact
 from meltdem.testing.lammps_run import run, thermo_runs
 from meltdem.testing.report import check_relative
 
@@ -17,26 +17,8 @@ R, U, GAMMA = 15e-6, 2.0, 1e-7
 
 def collide(model, e, S):
     dt = t_contact(mass(R), mass(R), R, R, U) / S
-    gap = 3.3 * U * dt
-    text = f"""units si
-atom_style sphere
-atom_modify map array
-boundary f f f
-region box block -2e-4 2e-4 -1e-4 1e-4 -1e-4 1e-4
-create_box 1 box
-comm_modify vel yes
-neighbor 2e-5 bin
-neigh_modify delay 0
-pair_style granular/powder
-pair_coeff * * {model} 200e9 {e} 0.3 {GAMMA} damping tsuji tangential mindlin NULL 1.0 0.5
-create_atoms 1 single {-R - gap / 2} 0 0
-create_atoms 1 single {R + gap / 2} 0 0
-set group all diameter {2 * R} density {RHO}
-set atom 1 vx {U / 2}
-set atom 2 vx {-U / 2}
-fix nve all nve/sphere
-fix dt all powder/dt steps {S}
-variable er equal (vx[2]-vx[1])/{U}
+    text = head_on(f"{model} 200e9 {e} 0.3 {GAMMA} damping tsuji tangential mindlin NULL 1.0 0.5", U, 3.3 * U * dt)
+    text += f"""fix dt all powder/dt steps {S}
 thermo_style custom step v_er
 thermo_modify format float %.15g
 thermo 1000000

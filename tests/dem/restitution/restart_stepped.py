@@ -7,7 +7,7 @@ import os
 import sys
 import tempfile
 
-from meltdem.testing.dem import RHO, mass, t_contact
+from meltdem.testing.dem import head_on, mass, t_contact
 from meltdem.testing.lammps_run import printed_value, run
 from meltdem.testing.report import check_absolute, check_relative
 
@@ -15,23 +15,8 @@ T = "dem.restitution.restart"
 R, U, E = 15e-6, 2.0, 0.3
 DT = t_contact(mass(R), mass(R), R, R, U) / 10
 STEPS = 120
-FIRST = f"""units si
-atom_style sphere
-atom_modify map array
-boundary f f f
-region box block -2e-4 2e-4 -1e-4 1e-4 -1e-4 1e-4
-create_box 1 box
-comm_modify vel yes
-neighbor 2e-5 bin
-neigh_modify delay 0
-pair_style granular/powder impact_speed {U}
-pair_coeff * * hertz/material 200e9 {E} 0.3 damping tsuji tangential linear_nohistory 1.0 0.0
-create_atoms 1 single {-R - 3.3 * U * DT / 2} 0 0
-create_atoms 1 single {R + 3.3 * U * DT / 2} 0 0
-set group all diameter {2 * R} density {RHO}
-set atom 1 vx {U / 2}
-set atom 2 vx {-U / 2}
-timestep {DT}
+FIRST = head_on(f"hertz/material 200e9 {E} 0.3 damping tsuji tangential linear_nohistory 1.0 0.0", U, 3.3 * U * DT,
+                pair_style=f"granular/powder impact_speed {U}") + f"""timestep {DT}
 write_restart before.restart
 """
 COLLIDE = f"""fix nve all nve/sphere

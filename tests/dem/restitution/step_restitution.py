@@ -12,7 +12,7 @@ prescribed e: within 0.5 % at every phase for S = 10 and 20; at S = 5 the phase 
 0.5 % and the worst phase reported (expected to miss: see doc/pair_granular_powder.rst)."""
 import sys
 
-from meltdem.testing.dem import ESTAR, RHO, mass, t_contact
+from meltdem.testing.dem import ESTAR, RHO, head_on, mass, sphere_box, t_contact
 from meltdem.testing.lammps_run import run, thermo_runs
 from meltdem.testing.report import check_relative, report
 
@@ -23,40 +23,21 @@ E_LIST = (0.1, 0.3, 0.5, 0.7, 0.95)
 S_LIST = (5, 10, 20)
 R1 = 15e-6
 
-HEAD = """units si
-atom_style sphere
-atom_modify map array
-boundary f f f
-region box block -2e-4 2e-4 -1e-4 1e-4 -1e-4 1e-4
-create_box 1 box
-comm_modify vel yes
-neighbor 2e-5 bin
-neigh_modify delay 0
+
+TAIL = """thermo_style custom step v_er
+thermo_modify format float %.15g
+thermo 1000000
+run {steps}
 """
 
 
 def pair_case(e, S, phase, R2=R1, powder_dt=True):
-    m1, m2 = mass(R1), mass(R2)
-    tc = t_contact(m1, m2, R1, R2, U)
-    dt = tc / S
-    gap = (3 + phase) * U * dt
-    text = HEAD + f"""pair_style granular/powder{'' if powder_dt else f' impact_speed {U}'}
-pair_coeff * * hertz/material 200e9 {e} 0.3 damping tsuji tangential linear_nohistory 1.0 0.0
-create_atoms 1 single {-R1 - gap / 2} 0 0
-create_atoms 1 single {R2 + gap / 2} 0 0
-set atom 1 diameter {2 * R1} density {RHO}
-set atom 2 diameter {2 * R2} density {RHO}
-velocity all set 0 0 0
-set atom 1 vx {U * m2 / (m1 + m2)}
-set atom 2 vx {-U * m1 / (m1 + m2)}
-fix nve all nve/sphere
-{f'fix dt all powder/dt steps {S}' if powder_dt else f'timestep {dt}'}
-variable er equal (vx[2]-vx[1])/{U}
-thermo_style custom step v_er
-thermo_modify format float %.15g
-thermo 1000000
-run {int(8 * S) + 20}
-"""
+    dt = t_contact(mass(R1), mass(R2), R1, R2, U) / S
+    pair = "granular/powder" if powder_dt else f"granular/powder impact_speed {U}"
+    text = head_on(f"hertz/material 200e9 {e} 0.3 damping tsuji tangential linear_nohistory 1.0 0.0", U,
+                   (3 + phase) * U * dt, R1, R2, pair)
+    text += f"fix dt all powder/dt steps {S}\n" if powder_dt else f"timestep {dt}\n"
+    text += TAIL.format(steps=int(8 * S) + 20)
     return thermo_runs(run(text)[1])[0][-1]["v_er"]
 
 
@@ -67,8 +48,7 @@ def wall_case(e, S, phase, powder_dt=False, region=False):
     dt = tc / S
     gap = (3 + phase) * U * dt
     speed = '' if powder_dt else f' impact_speed {U}'
-    text = HEAD.replace("boundary f f f", "boundary p p f").replace("-1e-4 1e-4\ncreate", "0 2e-4\ncreate") + f"""
-pair_style granular/powder {2 * R1}
+    text = sphere_box("p p f", "-2e-4 2e-4 -1e-4 1e-4 0 2e-4") + f"""pair_style granular/powder {2 * R1}
 pair_coeff * * hertz/material 200e9 {e} 0.3 damping tsuji tangential linear_nohistory 1.0 0.0
 create_atoms 1 single 0 0 {R1 + gap}
 set atom 1 diameter {2 * R1} density {RHO}
