@@ -45,11 +45,16 @@ void WallGranPowderCoeffs::apply_damping(double *normal_coeffs) const
   if (damping != DAMP_STOCK) normal_coeffs[1] = alpha;
 }
 
-double WallGranPowderCoeffs::contact_speed(LAMMPS *lmp) const
+void WallGranPowderCoeffs::find_step_fix(LAMMPS *lmp)
 {
+  fix_dt = nullptr;
   for (int i = 0; i < lmp->modify->nfix; i++)
-    if (auto *fix_dt = dynamic_cast<FixPowderDt *>(lmp->modify->fix[i]))
-      if (fix_dt->approach_speed() > 0.0) return 0.5 * fix_dt->approach_speed();
+    if (auto *f = dynamic_cast<FixPowderDt *>(lmp->modify->fix[i])) fix_dt = f;
+}
+
+double WallGranPowderCoeffs::contact_speed() const
+{
+  if (fix_dt && fix_dt->approach_speed() > 0.0) return 0.5 * fix_dt->approach_speed();
   return impact_speed;
 }
 
@@ -212,6 +217,7 @@ void FixWallGranPowder::init()
 {
   FixWallGran::init();
   coeffs.apply_damping(normal_coeffs);
+  coeffs.find_step_fix(lmp);
 }
 
 void FixWallGranPowder::post_force(int vflag)
@@ -234,7 +240,7 @@ void FixWallGranPowder::post_force(int vflag)
   double **x = atom->x, **v = atom->v, **f = atom->f;
   const double *radius = atom->radius, *rmass = atom->rmass;
   const int *mask = atom->mask;
-  const double speed = coeffs.contact_speed(lmp);
+  const double speed = coeffs.contact_speed();
   for (int i = 0; i < atom->nlocal; i++) {
     if (!(mask[i] & groupbit)) continue;
     double d[3] = {0.0, 0.0, 0.0}, vw[3] = {vwall[0], vwall[1], vwall[2]}, rwall = 0.0;

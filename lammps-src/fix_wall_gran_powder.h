@@ -41,9 +41,12 @@ struct WallGranPowderCoeffs {
   // copy the coefficients into a stock fix's protected arrays
   void apply_material(double *normal_coeffs, double *tangential_coeffs) const;
   void apply_damping(double *normal_coeffs) const;
+  class FixPowderDt *fix_dt = nullptr;  // the step's approach speed, when there is one (set in init)
+  // find fix powder/dt (at each init: fixes come and go between runs)
+  void find_step_fix(class LAMMPS *lmp);
   // the speed a wall contact's step is calibrated at: the largest particle speed of fix
   // powder/dt (half its pair approach speed), else impact_speed; 0: none
-  double contact_speed(class LAMMPS *lmp) const;
+  double contact_speed() const;
   // the force 'damping tsuji' adds along the wall normal to the stock contact (see
   // stepped_restitution.h); 0 for the other damping forms
   double damping_correction(const double *normal_coeffs, double delta, double separation_rate, double reff, double meff,

@@ -24,6 +24,7 @@ void FixWallGranRegionPowder::init()
 {
   FixWallGranRegion::init();
   coeffs.apply_damping(normal_coeffs);
+  coeffs.find_step_fix(lmp);
 }
 
 void FixWallGranRegionPowder::post_force(int vflag)
@@ -36,7 +37,7 @@ void FixWallGranRegionPowder::post_force(int vflag)
   double **x = atom->x, **v = atom->v, **f = atom->f;
   const double *radius = atom->radius, *rmass = atom->rmass;
   const int *mask = atom->mask;
-  const double speed = coeffs.contact_speed(lmp), step = update->dt;
+  const double speed = coeffs.contact_speed(), step = update->dt;
   const int iregion = domain->find_region(idregion);
   if (iregion < 0) return;  // the stock fix has already stopped on a missing region
   Region *region = domain->regions[iregion];

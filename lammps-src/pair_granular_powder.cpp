@@ -73,6 +73,8 @@ void PairGranularPowder::set_exact(int i, int j, double e)
     alpha_tables.assign(n, mc::SteppedAlphaTable());
   }
   exact_e[slot(i, j)] = exact_e[slot(j, i)] = e;
+  any_stepped = false;
+  for (double each : exact_e) any_stepped = any_stepped || each > 0.0;
   if (e > 0.0) alpha_tables[slot(i, j)] = alpha_tables[slot(j, i)] = mc::SteppedAlphaTable(e);
 }
 
@@ -192,9 +194,7 @@ double PairGranularPowder::current_impact_speed() const
 void PairGranularPowder::compute(int eflag, int vflag)
 {
   PairGranular::compute(eflag, vflag);
-  bool any = false;
-  for (double e : exact_e) any = any || e > 0.0;
-  if (any) add_stepped_damping(eflag, vflag);
+  if (any_stepped) add_stepped_damping(eflag, vflag);
 }
 
 void PairGranularPowder::add_stepped_damping(int /*eflag*/, int /*vflag*/)

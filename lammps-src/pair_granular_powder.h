@@ -28,6 +28,7 @@ class PairGranularPowder : public PairGranular {
   // 'damping tsuji' type pairs: the prescribed e (0: stock damping) and alpha(h) for it
   std::vector<double> exact_e;
   std::vector<meltdem::coupling::SteppedAlphaTable> alpha_tables;
+  bool any_stepped = false;             // some type pair has 'damping tsuji' with the stepped damping
   double impact_speed = 0.0;            // pair_style keyword impact_speed (m/s), 0: none
   class FixPowderDt *fix_dt = nullptr;  // the step's approach speed, when there is one
 

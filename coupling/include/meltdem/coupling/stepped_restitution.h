@@ -10,7 +10,7 @@
 //   D(delta) = alpha sqrt(m* K) 4/5 delta^(5/4),   F_damp(n) = (D(delta_n) - D(delta_n-1)) / dt,
 // (delta_n-1 = delta_n - dt delta', known from v(n-1/2)); the damping impulses of a
 // contact then sum exactly to D(end) - D(start) = 0 as in the continuous contact, and
-// e no longer depends on the phase to within 0.2 % at 10 steps per contact. What remains
+// e no longer depends on the phase to within 0.25 % at 10 steps per contact. What remains
 // is a smooth bias in the dimensionless step h = dt v0^(1/5) (K/m*)^(2/5), removed by
 // choosing alpha for that h (alpha_for_restitution_at_step).
 
@@ -59,7 +59,6 @@ class SteppedAlphaTable {
   SteppedAlphaTable() = default;
   explicit SteppedAlphaTable(double e) : e_(e) {}
   double alpha(double h) const;
-  double restitution() const { return e_; }
 
  private:
   static constexpr int points = 17;
