@@ -59,11 +59,11 @@ double WallGranPowderCoeffs::contact_speed() const
 }
 
 double WallGranPowderCoeffs::damping_correction(const double *normal_coeffs, double delta, double separation_rate,
-                                                double reff, double meff, double dt, double speed) const
+                                                double reff, double meff, double dt, double speed_factor) const
 {
   if (damping != DAMP_TSUJI_EXACT || e <= 0.0) return 0.0;
   const double hertz_k = normal_coeffs[0] * std::sqrt(reff);
-  const double h = speed > 0.0 ? meltdem::coupling::contact_step(dt, speed, hertz_k, meff) : 0.0;
+  const double h = speed_factor > 0.0 ? meltdem::coupling::contact_step(speed_factor, hertz_k, meff) : 0.0;
   return meltdem::coupling::stepped_damping_correction(stepped.alpha(h), normal_coeffs[1], hertz_k, meff, delta,
                                                        separation_rate, dt);
 }
@@ -182,7 +182,7 @@ WallGranPowderArgs::WallGranPowderArgs(LAMMPS *lmp, int narg, char **arg, bool r
     coeffs.alpha = meltdem::coupling::alpha_for_restitution(e);
     if (!jkr) {
       coeffs.e = e;
-      coeffs.stepped = meltdem::coupling::SteppedAlphaTable(e);
+      coeffs.stepped = meltdem::coupling::SteppedAlphaTable(e, coeffs.alpha);
     }
   }
   if (wall_given && model != MATERIAL)
@@ -240,7 +240,7 @@ void FixWallGranPowder::post_force(int vflag)
   double **x = atom->x, **v = atom->v, **f = atom->f;
   const double *radius = atom->radius, *rmass = atom->rmass;
   const int *mask = atom->mask;
-  const double speed = coeffs.contact_speed();
+  const double speed = coeffs.contact_speed(), speed_factor = speed > 0.0 ? update->dt * pow(speed, 0.2) : 0.0;
   for (int i = 0; i < atom->nlocal; i++) {
     if (!(mask[i] & groupbit)) continue;
     double d[3] = {0.0, 0.0, 0.0}, vw[3] = {vwall[0], vwall[1], vwall[2]}, rwall = 0.0;
@@ -268,7 +268,8 @@ void FixWallGranPowder::post_force(int vflag)
     const double reff = rwall == 0.0 ? radius[i] : radius[i] * rwall / (radius[i] + rwall);
     double meff = rmass[i];
     if (fix_rigid && mass_rigid[i] > 0.0) meff = mass_rigid[i];
-    const double fn = coeffs.damping_correction(normal_coeffs, radius[i] - r, rate, reff, meff, update->dt, speed);
+    const double fn =
+        coeffs.damping_correction(normal_coeffs, radius[i] - r, rate, reff, meff, update->dt, speed_factor);
     for (int k = 0; k < 3; k++) f[i][k] += n[k] * fn;
   }
 }

@@ -48,9 +48,10 @@ struct WallGranPowderCoeffs {
   // powder/dt (half its pair approach speed), else impact_speed; 0: none
   double contact_speed() const;
   // the force 'damping tsuji' adds along the wall normal to the stock contact (see
-  // stepped_restitution.h); 0 for the other damping forms
+  // stepped_restitution.h); 0 for the other damping forms. speed_factor: dt speed^(1/5) of
+  // the step (0: no calibration speed)
   double damping_correction(const double *normal_coeffs, double delta, double separation_rate, double reff, double meff,
-                            double dt, double speed) const;
+                            double dt, double speed_factor) const;
 };
 
 // Reads the keywords the powder wall fixes add to 'fix wall/gran granular ...'

@@ -38,6 +38,7 @@ void FixWallGranRegionPowder::post_force(int vflag)
   const double *radius = atom->radius, *rmass = atom->rmass;
   const int *mask = atom->mask;
   const double speed = coeffs.contact_speed(), step = update->dt;
+  const double speed_factor = speed > 0.0 ? step * pow(speed, 0.2) : 0.0;
   const int iregion = domain->find_region(idregion);
   if (iregion < 0) return;  // the stock fix has already stopped on a missing region
   Region *region = domain->regions[iregion];
@@ -58,7 +59,7 @@ void FixWallGranRegionPowder::post_force(int vflag)
       const double reff = rwall == 0.0 ? radius[i] : radius[i] * rwall / (radius[i] + rwall);
       double meff = rmass[i];
       if (fix_rigid && mass_rigid[i] > 0.0) meff = mass_rigid[i];
-      const double fn = coeffs.damping_correction(normal_coeffs, radius[i] - r, rate, reff, meff, step, speed);
+      const double fn = coeffs.damping_correction(normal_coeffs, radius[i] - r, rate, reff, meff, step, speed_factor);
       for (int k = 0; k < 3; k++) f[i][k] += n[k] * fn;
     }
   }

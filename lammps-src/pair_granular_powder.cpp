@@ -65,7 +65,7 @@ int PairGranularPowder::slot(int i, int j) const
   return i * (atom->ntypes + 1) + j;
 }
 
-void PairGranularPowder::set_exact(int i, int j, double e)
+void PairGranularPowder::set_exact(int i, int j, double e, double alpha_continuous)
 {
   const int n = (atom->ntypes + 1) * (atom->ntypes + 1);
   if ((int)exact_e.size() != n) {
@@ -75,7 +75,7 @@ void PairGranularPowder::set_exact(int i, int j, double e)
   exact_e[slot(i, j)] = exact_e[slot(j, i)] = e;
   any_stepped = false;
   for (double each : exact_e) any_stepped = any_stepped || each > 0.0;
-  if (e > 0.0) alpha_tables[slot(i, j)] = alpha_tables[slot(j, i)] = mc::SteppedAlphaTable(e);
+  if (e > 0.0) alpha_tables[slot(i, j)] = alpha_tables[slot(j, i)] = mc::SteppedAlphaTable(e, alpha_continuous);
 }
 
 void PairGranularPowder::coeff(int narg, char **arg)
@@ -151,7 +151,7 @@ void PairGranularPowder::coeff(int narg, char **arg)
   for (int i = ilo; i <= ihi; i++)
     for (int j = MAX(jlo, i); j <= jhi; j++)
       if (setflag[i][j]) {
-        set_exact(i, j, (mode == 1 && model == HERTZ_LIKE) ? value : 0.0);
+        set_exact(i, j, (mode == 1 && model == HERTZ_LIKE) ? value : 0.0, alpha);
         if (mode == 0) continue;
         double ***nc = this->*get(NormalCoeffsTag());
         nc[i][j][1] = nc[j][i][1] = alpha;
@@ -209,6 +209,7 @@ void PairGranularPowder::add_stepped_damping(int /*eflag*/, int /*vflag*/)
   double ***nc = this->*get(NormalCoeffsTag());
   const double step = update->dt;
   const double speed = current_impact_speed();
+  const double speed_factor = speed > 0.0 ? step * std::pow(speed, 0.2) : 0.0;
 
   for (int ii = 0; ii < list->inum; ii++) {
     const int i = list->ilist[ii];
@@ -245,7 +246,7 @@ void PairGranularPowder::add_stepped_damping(int /*eflag*/, int /*vflag*/)
       const double reff = radius[i] * radius[j] / radsum;
       const double hertz_k = nc[itype][jtype][0] * std::sqrt(reff);
 
-      const double h = speed > 0.0 ? mc::contact_step(step, speed, hertz_k, meff) : 0.0;
+      const double h = speed > 0.0 ? mc::contact_step(speed_factor, hertz_k, meff) : 0.0;
       const double alpha = alpha_tables[slot(itype, jtype)].alpha(h);
       const double fn = mc::stepped_damping_correction(alpha, nc[itype][jtype][1], hertz_k, meff, delta, vnnr, step);
 
@@ -298,5 +299,5 @@ void PairGranularPowder::read_restart(FILE *fp)
   MPI_Bcast(block.data(), n, MPI_DOUBLE, 0, world);
   impact_speed = speed;
   for (int i = 1; i <= atom->ntypes; i++)
-    for (int j = i; j <= atom->ntypes; j++) set_exact(i, j, block[slot(i, j)]);
+    for (int j = i; j <= atom->ntypes; j++) set_exact(i, j, block[slot(i, j)], -1.0);
 }

@@ -33,7 +33,8 @@ class PairGranularPowder : public PairGranular {
   class FixPowderDt *fix_dt = nullptr;  // the step's approach speed, when there is one
 
   int slot(int i, int j) const;  // index of type pair i j in exact_e and alpha_tables
-  void set_exact(int i, int j, double e);
+  // e > 0: stepped damping for e; alpha_continuous: its continuous alpha when known (< 0: not)
+  void set_exact(int i, int j, double e, double alpha_continuous);
   double current_impact_speed() const;
   void add_stepped_damping(int eflag, int vflag);
 };

@@ -22,7 +22,12 @@ constexpr int phases = 16;
 
 double contact_step(double dt, double impact_speed, double hertz_k, double meff)
 {
-  return dt * std::pow(impact_speed, 0.2) * std::pow(hertz_k / meff, 0.4);
+  return contact_step(dt * std::pow(impact_speed, 0.2), hertz_k, meff);
+}
+
+double contact_step(double dt_speed_factor, double hertz_k, double meff)
+{
+  return dt_speed_factor * std::pow(hertz_k / meff, 0.4);
 }
 
 double stepped_damping_force(double alpha, double hertz_k, double meff, double delta, double delta_prev, double dt)
@@ -43,7 +48,9 @@ double restitution_at_step(double alpha, double h, double phase)
   // the pair style's loop in dimensionless form (m* = K = v0 = 1): kick, drift, force, kick
   double x = -phase * h, v = 1.0, a = 0.0;
   bool touched = false;
-  const long limit = 1000000L;
+  // an over-damped contact creeps back to x = 0 without separating: stop after 60 elastic
+  // contact times (3.22 each) and return its remaining speed (e ~ 0)
+  const long limit = 2 + (long)(200.0 / h);
   for (long n = 0; n < limit; ++n) {
     v += 0.5 * h * a;
     x += h * v;
@@ -55,7 +62,7 @@ double restitution_at_step(double alpha, double h, double phase)
     else if (touched && x_prev <= 0.0)
       return -v;  // no force acted this step: free flight
   }
-  return 0.0;  // over-damped: never separated
+  return -v;
 }
 
 double mean_restitution_at_step(double alpha, double h)
@@ -87,6 +94,14 @@ double alpha_for_restitution_at_step(double e, double h)
       hi = mid;
   }
   return 0.5 * (lo + hi);
+}
+
+SteppedAlphaTable::SteppedAlphaTable(double e, double alpha_continuous) : e_(e)
+{
+  if (alpha_continuous >= 0.0) {
+    alpha_[0] = alpha_continuous;
+    known_[0] = true;
+  }
 }
 
 double SteppedAlphaTable::node(int k) const

@@ -20,6 +20,8 @@ namespace meltdem::coupling {
 // K = 4/3 E* sqrt(R*) (the Hertz force K delta^(3/2)), m* the effective mass, v0 the
 // impact speed.
 double contact_step(double dt, double impact_speed, double hertz_k, double meff);
+// The same as dt v0^(1/5) (the part common to a step's contacts) times (K/m*)^(2/5).
+double contact_step(double dt_speed_factor, double hertz_k, double meff);
 
 // Normal damping force of the stepped contact (repulsive > 0): (D(delta) - D(delta_prev))/dt
 // with D = alpha sqrt(meff K) 4/5 max(delta,0)^(5/4). delta_prev is the overlap one step
@@ -57,7 +59,8 @@ constexpr double max_contact_step = 1.0;
 class SteppedAlphaTable {
  public:
   SteppedAlphaTable() = default;
-  explicit SteppedAlphaTable(double e) : e_(e) {}
+  // alpha_continuous: alpha_for_restitution(e), when the caller has it (it is the node h = 0)
+  explicit SteppedAlphaTable(double e, double alpha_continuous = -1.0);
   double alpha(double h) const;
 
  private:
