@@ -228,7 +228,28 @@ def write_bed_data(path, cfg, bed):
             f.write(f"{i} 1 {d!r} {RHO_P!r} {x!r} {y!r} {z!r}\n")
 
 
-def build(case, variant, dx=None, dist=None, n=None, bed_dir=None, seed=4711, gas_cp=G["cp"], shadow=True):
+def lognormal_mean_volume():
+    """mean grain volume of the truncated log-normal diameters (numerical, on 2000 points)"""
+    d = np.linspace(D_LO, D_HI, 2000)
+    w = np.exp(-0.5 * (np.log(d / D_MED) / D_SIG) ** 2) / d
+    return float(np.sum(w * math.pi / 6 * d ** 3) / np.sum(w))
+
+
+def spread_bed(bed_dir, cfg):
+    """The bed spread by examples/powder-spread's blade (2 d90 gap, its defaults) with this
+    scene's grains over its floor: the (n, 4) array x, y, z, d on the substrate top."""
+    from meltdem.scene import module
+    t0 = time.time()
+    dump, n = module("powder-spread").spread_bed(
+        bed_dir, cfg["lx"], cfg["lz"], dlo=D_LO, dhi=D_HI, diam=f"lognormal {D_MED!r} {D_SIG!r} {D_LO!r} {D_HI!r}",
+        mean_volume=lognormal_mean_volume(), gap=2 * (D_LO + 0.9 * (D_HI - D_LO)), E=E_DEM)
+    print(f"bed: {n} grains spread in {time.time() - t0:.0f} s")
+    a = dumps.columns(dumps.read_frames(dump)[-1])
+    return np.column_stack([a["x"], a["y"] + cfg["sub"], a["z"], 2 * a["radius"]])
+
+
+def build(case, variant, dx=None, dist=None, n=None, bed_dir=None, seed=4711, gas_cp=G["cp"], shadow=True,
+          bed_process="pour"):
     cfg = dict(VARIANTS[variant])
     cfg["gas_cp"] = gas_cp
     cfg["shadow"] = shadow
@@ -242,7 +263,11 @@ def build(case, variant, dx=None, dist=None, n=None, bed_dir=None, seed=4711, ga
     if os.path.exists(case):
         shutil.rmtree(case)
     os.makedirs(case)
-    bed = make_bed(bed_dir or os.path.join(case, "bed"), cfg, seed)
+    if bed_process == "spread":
+        bed = spread_bed(bed_dir or os.path.join(case, "spread"), cfg)
+        cfg["n"] = len(bed)
+    else:
+        bed = make_bed(bed_dir or os.path.join(case, "bed"), cfg, seed)
     cfg["bed_top"] = float(np.max(bed[:, 1] + bed[:, 3] / 2))
     nc = ncells(cfg)
     lo, hi = (0.0, 0.0, 0.0), (nc[0] * cfg["dx"], nc[1] * cfg["dx"], nc[2] * cfg["dx"])

@@ -32,6 +32,8 @@ def main(scene=VARIANT, doc=__doc__, argv=None):
                     help="particle-to-cell distribution model")
     ap.add_argument("--grains", type=int, default=None, help="number of grains")
     ap.add_argument("--bed", default=None, help="folder of the poured bed (reused when present)")
+    ap.add_argument("--bed-process", choices=["pour", "spread"], default="pour",
+                    help="pour the bed (the paper's) or spread it with examples/powder-spread's blade")
     ap.add_argument("--no-shadow", action="store_true",
                     help="grains cast no shadow and absorb no light (the beam reaches the continuum)")
     ap.add_argument("--gas-cp", type=float, default=pbf.G["cp"],
@@ -43,7 +45,7 @@ def main(scene=VARIANT, doc=__doc__, argv=None):
     variant = f"{scene}-{'full' if args.full else 'ci'}"
     if args.action in ("build", "all"):
         pbf.build(case, variant, dx=args.dx, dist=args.dist, n=args.grains, bed_dir=args.bed,
-                  gas_cp=args.gas_cp, shadow=not args.no_shadow)
+                  gas_cp=args.gas_cp, shadow=not args.no_shadow, bed_process=args.bed_process)
     if args.action in ("run", "all"):
         pbf.run(case, args.np, args.timeout)
     if args.action in ("analyse", "all"):

@@ -10,19 +10,14 @@
 particles, ~30 s serial); --full (default) the Codina2019 box 0.90 x 0.21 x 0.90 mm with walls,
 1375 particles (~7 min on 2 cores). README.md explains both.
 """
-import argparse
 import json
 import os
-import shutil
-import subprocess
 
-from meltdem import paths
 from meltdem.analysis.beds import bed_stats
+from meltdem.case.dem import run_input, scene_parser, write_case
 from meltdem.scene import Scene
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-REPO = os.path.abspath(os.path.join(HERE, "..", ".."))
-BIN = paths.bin_dir()
 
 VARIANTS = {
     "ci": {"Lx": "3e-4", "Lz": "3e-4", "sides": "periodic", "every": "100"},
@@ -31,20 +26,11 @@ VARIANTS = {
 
 
 def build(case, variant):
-    os.makedirs(case, exist_ok=True)
-    shutil.copy(os.path.join(HERE, "in.powder-bed"), case)
-    with open(os.path.join(case, "scene.json"), "w") as f:
-        json.dump({"scene": "powder-bed", "variant": variant, "vars": VARIANTS[variant]}, f, indent=1)
+    write_case(case, "powder-bed", variant, os.path.join(HERE, "in.powder-bed"), VARIANTS[variant])
 
 
 def run(case, np_):
-    spec = json.load(open(os.path.join(case, "scene.json")))
-    cmd = [os.path.join(BIN, "meltdem-lmp"), "-in", "in.powder-bed", "-log", "log.lammps", "-screen", "none"]
-    for k, v in spec["vars"].items():
-        cmd += ["-var", k, v]
-    if np_ > 1:
-        cmd = ["mpirun", "--allow-run-as-root", "--oversubscribe", "-np", str(np_)] + cmd
-    subprocess.run(cmd, cwd=case, check=True)
+    run_input(case, "in.powder-bed", np_)
 
 
 def analyse(case):
@@ -62,14 +48,7 @@ def analyse(case):
 
 
 def main(argv=None):
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("action", choices=["build", "run", "analyse", "all"])
-    ap.add_argument("case")
-    size = ap.add_mutually_exclusive_group()
-    size.add_argument("--ci", action="store_const", dest="variant", const="ci")
-    size.add_argument("--full", action="store_const", dest="variant", const="full")
-    ap.add_argument("--np", type=int, default=1)
-    a = ap.parse_args(argv)
+    a = scene_parser(__doc__).parse_args(argv)
     case = os.path.abspath(a.case)
     if a.action in ("build", "all"):
         build(case, a.variant or "full")

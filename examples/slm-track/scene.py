@@ -99,6 +99,16 @@ def pour_bed(case, v):
     return os.path.join(bed, "bed.dump")
 
 
+def spread_bed(case, v):
+    """Spread the bed with examples/powder-spread (blade, 2 d90 gap, its defaults) into CASE/spread/
+    over this floor; returns its layer dump (the plate's middle lx x lz)."""
+    from meltdem.scene import module
+    t = time.time()
+    dump, n = module("powder-spread").spread_bed(os.path.join(case, "spread"), v["lx"], v["lz"])
+    print(f"powder bed spread in {time.time() - t:.0f} s: {n} grains -> {dump}")
+    return dump
+
+
 def write_data(case, dump, v):
     """LAMMPS data file of the bed (atom_style sphere: id type diameter density x y z), at rest;
     the box is the mesh plus a margin (the coupling books particles leaving the mesh)."""
@@ -179,7 +189,7 @@ def build(case, variant, cell=None, bed=None, track=None, distribution="overlap"
     v["top"] = round(v["top"] / h) * h
     n = (int(round(v["lx"] / h)), int(round((v["sub"] + v["top"]) / h)), int(round(v["lz"] / h)))
     os.makedirs(case, exist_ok=True)
-    dump = bed or pour_bed(case, v)
+    dump = spread_bed(case, v) if bed == "spread" else bed or pour_bed(case, v)
     nparticles = write_data(case, dump, v)
     t_scan = (v["x1"] - v["x0"]) / SPEED
     t_end = t_scan + v["cool"]
@@ -505,7 +515,8 @@ def main(argv=None):
     g.add_argument("--full", action="store_true", help="thesis size 0.9 x 0.21 x 0.9 mm, 0.7 mm track")
     ap.add_argument("--np", type=int, default=1)
     ap.add_argument("--cell", type=float, help="cell size [m] (default 15e-6)")
-    ap.add_argument("--bed", help="powder-bed dump to use instead of pouring one")
+    ap.add_argument("--bed", help="powder-bed dump to use instead of pouring one, or 'spread': a layer spread "
+                    "by examples/powder-spread's blade")
     ap.add_argument("--track", type=float, help="track length [m]")
     ap.add_argument("--distribution", default="overlap", choices=["centre", "neighbours", "overlap"])
     ap.add_argument("--gas-cp", type=float, help="gas heat capacity [J/kg/K] (default argon's 520)")
@@ -516,7 +527,8 @@ def main(argv=None):
     case = os.path.abspath(a.case)
     variant = "full" if a.full else "ci"
     if a.command in ("build", "all"):
-        build(case, variant, a.cell, a.bed and os.path.abspath(a.bed), a.track, a.distribution, a.np, a.gas_cp,
+        bed = a.bed if a.bed in (None, "spread") else os.path.abspath(a.bed)
+        build(case, variant, a.cell, bed, a.track, a.distribution, a.np, a.gas_cp,
               a.fluid_dt, a.gas_mu, a.surface or None)
     if a.command in ("run", "all"):
         run(case, a.np)
