@@ -42,9 +42,11 @@ def one(work, label, opts, seed):
     scene = module("powder-spread")
     case = os.path.join(work, label.split(" (")[0].replace(" ", "_").replace("/", "") + f".{seed}")
     done = os.path.join(case, "summary.json")
-    if os.path.exists(done):                    # a case already run (same entries): reused
-        s = json.load(open(done))
-        if "wall_s" in s:
+    if os.path.exists(done) and os.path.exists(os.path.join(case, "spread.dump")):
+        wall = json.load(open(done)).get("wall_s")       # a case already run (same entries): re-analysed
+        if wall is not None:
+            s = scene.spread_stats(case)
+            s["wall_s"] = wall
             return label, seed, s
     t = time.time()
     scene.build(case, "ci", seed=seed, **dict(BASE, **opts))

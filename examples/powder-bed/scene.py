@@ -14,7 +14,7 @@ import json
 import os
 
 from meltdem.analysis.beds import bed_stats
-from meltdem.case.dem import run_input, scene_parser, write_case
+from meltdem.case.dem import run_actions, run_input, scene_parser, write_case
 from meltdem.scene import Scene
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -49,13 +49,7 @@ def analyse(case):
 
 def main(argv=None):
     a = scene_parser(__doc__).parse_args(argv)
-    case = os.path.abspath(a.case)
-    if a.action in ("build", "all"):
-        build(case, a.variant or "full")
-    if a.action in ("run", "all"):
-        run(case, a.np)
-    if a.action in ("analyse", "all"):
-        analyse(case)
+    run_actions(a, lambda case: build(case, a.variant or "full"), run, analyse)
 
 
 SCENE = Scene(name="powder-bed", kind="dem",

@@ -18,7 +18,7 @@ import math
 import os
 
 from meltdem.analysis.spread import layer_bed, spread_stats
-from meltdem.case.dem import run_input, scene_parser, write_case
+from meltdem.case.dem import run_actions, run_input, scene_parser, write_case
 from meltdem.scene import Scene
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -98,13 +98,7 @@ def main(argv=None):
     ap.add_argument("--E", type=float, help="Young's modulus [Pa] (default 1e9)")
     ap.add_argument("--seed", type=int)
     a = ap.parse_args(argv)
-    case = os.path.abspath(a.case)
-    if a.action in ("build", "all"):
-        build(case, a.variant or "full", **{k: getattr(a, k) for k in OPTIONS})
-    if a.action in ("run", "all"):
-        run(case, a.np)
-    if a.action in ("analyse", "all"):
-        analyse(case)
+    run_actions(a, lambda case: build(case, a.variant or "full", **{k: getattr(a, k) for k in OPTIONS}), run, analyse)
 
 
 SCENE = Scene(name="powder-spread", kind="dem",

@@ -15,7 +15,8 @@ each end, so the edges do not enter):
               surface over the column's centre (the base height where no grain covers it);
               the profile is its mean per d_max-wide band along x, the thickness its mean,
               all above the base (the plate, or the previous layer's mean top).
-  roughness   Sq = rms of H about its mean (ISO 25178 areal), and the band-mean spread.
+  roughness   Sq = rms of H about its mean (ISO 25178 areal).
+  uncovered   the fraction of the columns that no spread grain covers.
   segregation mean diameter of the spread grains per band along x; its slope (linear fit,
               um per mm) and the ratio of the last third's mean to the first third's, against
               the heap's mean diameter.
@@ -89,6 +90,8 @@ def spread_stats(case):
     sel = (x > a - dmax) & (x < b + dmax) & (y > -dmax)
     H = surface_map(x[sel], y[sel], z[sel], r[sel], xs, zs, lz, 0.0) - base
     H = np.maximum(H, 0.0)
+    mine = sel & spread                                     # columns no spread grain covers
+    uncovered = float(np.mean(np.isinf(surface_map(x[mine], y[mine], z[mine], r[mine], xs, zs, lz, -np.inf))))
     band = max(1, int(round(dmax / h)))
     nb = len(xs) // band
     prof_x = xs[:nb * band].reshape(nb, band).mean(axis=1)
@@ -110,7 +113,7 @@ def spread_stats(case):
         "packing_fraction": float(packing),
         "solid_thickness_m": float(vol[on].sum() / area),
         "thickness_m": float(H.mean()), "roughness_Sq_m": float(H.std()),
-        "uncovered_fraction": float(np.mean(H <= 0.0)),
+        "uncovered_fraction": uncovered,
         "profile_x_m": [float(v - x0) for v in prof_x], "profile_thickness_m": [float(v) for v in prof_h],
         "profile_mean_diameter_m": [float(v) for v in dm],
         "mean_diameter_layer_m": float(2 * r[on].mean()) if on.any() else float("nan"),

@@ -39,3 +39,14 @@ def scene_parser(doc):
     size.add_argument("--full", action="store_const", dest="variant", const="full")
     ap.add_argument("--np", type=int, default=1)
     return ap
+
+
+def run_actions(args, build, run, analyse):
+    """the parsed command's steps: build(case), run(case, np), analyse(case), in that order"""
+    case = os.path.abspath(args.case)
+    if args.action in ("build", "all"):
+        build(case)
+    if args.action in ("run", "all"):
+        run(case, args.np)
+    if args.action in ("analyse", "all"):
+        analyse(case)
