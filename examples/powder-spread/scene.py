@@ -103,7 +103,7 @@ def main(argv=None):
 
 SCENE = Scene(name="powder-spread", kind="dem",
               title="Powder spread by a blade or a counter-rotating roller",
-              ci_time="~75 s serial", full_time="~20 min serial (estimate: 6.7x the grains, 2.5x the stroke)",
+              ci_time="~75 s serial", full_time="21 min serial",
               build=lambda case, size: main(["build", case, f"--{size}"]),
               analyse=lambda case: main(["analyse", case]),
               summary=analyse)
