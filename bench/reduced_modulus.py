@@ -33,6 +33,7 @@ os.environ.setdefault("MELTDEM_SOURCE_DIR", ROOT)
 
 from meltdem.io import dumps  # noqa: E402
 from meltdem.analysis.beds import bed_stats  # noqa: E402
+from meltdem.analysis.spread import surface_map  # noqa: E402
 
 LMP = os.path.join(os.path.abspath(args.bin), "meltdem-lmp")
 IN = os.path.join(ROOT, "examples", "powder-bed", "in.powder-bed")
@@ -46,14 +47,9 @@ def roughness(path, grid=10e-6):
     last = dumps.read_frames(path)[-1]
     box, a = last["box"], dumps.columns(last)
     lx, lz = box[0, 1] - box[0, 0], box[2, 1] - box[2, 0]
-    gx, gz = np.meshgrid(box[0, 0] + (np.arange(int(round(lx / grid))) + 0.5) * grid,
-                         box[2, 0] + (np.arange(int(round(lz / grid))) + 0.5) * grid, indexing="ij")
-    top = np.zeros(gx.shape)
-    for x, y, z, r in zip(a["x"], a["y"] - box[1, 0], a["z"], a["radius"]):
-        dx = (gx - x + lx / 2) % lx - lx / 2
-        dz = (gz - z + lz / 2) % lz - lz / 2
-        h2 = r * r - dx * dx - dz * dz
-        top = np.where(h2 > 0, np.maximum(top, y + np.sqrt(np.maximum(h2, 0.0))), top)
+    xs = box[0, 0] + (np.arange(int(round(lx / grid))) + 0.5) * grid
+    zs = box[2, 0] + (np.arange(int(round(lz / grid))) + 0.5) * grid
+    top = surface_map(a["x"], a["y"] - box[1, 0], a["z"], a["radius"], xs, zs, lz, 0.0, lx=lx)
     return top.std()
 
 

@@ -37,33 +37,31 @@ from ..io import dumps
 
 
 def run_geometry(case):
-    """the SPREAD line the run printed (log.lammps or out.powder-spread)"""
-    for name in ("log.lammps", "out.powder-spread"):
-        path = os.path.join(case, name)
-        if os.path.exists(path):
-            m = re.findall(r"^SPREAD (.*)$", open(path).read(), re.M)
-            if m:
-                kv = m[-1].split()
-                geo = dict(zip(kv[0::2], kv[1::2]))
-                return {k: (v if k in ("spreader", "base") else float(v)) for k, v in geo.items()}
+    """the SPREAD line the run printed into CASE/log.lammps"""
+    path = os.path.join(case, "log.lammps")
+    m = re.findall(r"^SPREAD (.*)$", open(path).read(), re.M) if os.path.exists(path) else []
+    if m:
+        kv = m[-1].split()
+        return {k: (v if k in ("spreader", "base") else float(v)) for k, v in zip(kv[0::2], kv[1::2])}
     raise RuntimeError(f"{case}: no 'SPREAD' line in log.lammps: the spreading run did not finish")
 
 
-def surface_map(x, y, z, r, xs, zs, lz, base):
-    """highest sphere surface over each column (xs[i], zs[j]); periodic in z over lz"""
+def surface_map(x, y, z, r, xs, zs, lz, base, lx=None):
+    """highest sphere surface over each column (xs[i], zs[j]), base where none covers it;
+    periodic in z over lz, and in x over lx when given"""
     H = np.full((len(xs), len(zs)), base)
     for xi, yi, zi, ri in zip(x, y, z, r):
-        ix = np.nonzero(np.abs(xs - xi) < ri)[0]
+        dx = xs - xi if lx is None else (xs - xi + lx / 2) % lx - lx / 2
+        ix = np.nonzero(np.abs(dx) < ri)[0]
         if not len(ix):
             continue
         dz = (zs - zi + lz / 2) % lz - lz / 2
         iz = np.nonzero(np.abs(dz) < ri)[0]
         if not len(iz):
             continue
-        rho2 = (xs[ix, None] - xi) ** 2 + dz[None, iz] ** 2
+        rho2 = dx[ix, None] ** 2 + dz[None, iz] ** 2
         top = np.where(rho2 < ri * ri, yi + np.sqrt(np.maximum(ri * ri - rho2, 0.0)), -np.inf)
-        sub = H[np.ix_(ix, iz)]
-        H[np.ix_(ix, iz)] = np.maximum(sub, top)
+        H[np.ix_(ix, iz)] = np.maximum(H[np.ix_(ix, iz)], top)
     return H
 
 
@@ -71,7 +69,7 @@ def spread_stats(case):
     geo = run_geometry(case)
     d = dumps.columns(dumps.read_frames(os.path.join(case, "spread.dump"))[-1])
     typ, x, y, z, r, m = d["type"], d["x"], d["y"], d["z"], d["radius"], d["mass"]
-    dmax, lz, base, gap = geo["dhi"] * 1.0, geo["Lz"], geo["ybase"], geo["gap"]
+    dmax, lz, base, gap = geo["dhi"], geo["Lz"], geo["ybase"], geo["gap"]
     x0, x1 = geo["xplate0"], geo["xplate1"]
     spread = typ == 1
     a, b = x0 + 2 * dmax, x1 - 2 * dmax                    # the plate's inner part
@@ -97,8 +95,8 @@ def spread_stats(case):
     prof_x = xs[:nb * band].reshape(nb, band).mean(axis=1)
     prof_h = H[:nb * band].reshape(nb, band, -1).mean(axis=(1, 2))
     # segregation: mean diameter per band, its slope, last third / first third
-    dm = np.array([2 * r[on & (x >= lo - dmax / 2) & (x < lo + dmax / 2)].mean()
-                   if np.any(on & (x >= lo - dmax / 2) & (x < lo + dmax / 2)) else np.nan for lo in prof_x])
+    in_band = [on & (x >= xc - dmax / 2) & (x < xc + dmax / 2) for xc in prof_x]
+    dm = np.array([2 * r[k].mean() if k.any() else np.nan for k in in_band])
     ok = np.isfinite(dm)
     slope = float(np.polyfit(prof_x[ok], dm[ok], 1)[0]) if ok.sum() > 2 else float("nan")
     third = (b - a) / 3
