@@ -38,6 +38,8 @@ Description
 #include "particleCoupling.H"
 #include "caseCheckpoint.H"
 #include "caseLock.H"
+#include "meshRefinement.H"
+#include "dynamicRefineFvMesh.H"
 #include "energyTransport.H"
 #include "upwind.H"
 #include "gaussConvectionScheme.H"
@@ -71,12 +73,15 @@ int main(int argc, char *argv[])
 
     // one run per case folder, before anything is read or written
     Foam::meltdem::caseLock lock(runTime);
+    // refinement{} in meltdemProperties: the mesh type and its entries, before the mesh
+    const bool refining = Foam::meltdem::meshRefinement::writeMeshDict(runTime);
     #include "createDynamicFvMesh.H"
     #include "initContinuityErrs.H"
     #include "createDyMControls.H"
     #include "createFields.H"
     #include "createMeltdemFields.H"
     #include "checkStartFields.H"
+    #include "createMeshRefinement.H"
     #include "createAlphaFluxes.H"
     #include "initCorrectPhi.H"
     #include "createUfIfPresent.H"
@@ -111,6 +116,8 @@ int main(int argc, char *argv[])
             #include "setDeltaT.H"
         }
 
+        #include "refineMesh.H"
+
         if (particles.valid())
         {
             // LAMMPS advances first and fixes the step to the time it advanced
@@ -136,7 +143,11 @@ int main(int argc, char *argv[])
         {
             if (pimple.firstIter() || moveMeshOuterCorrectors)
             {
-                mesh.update();
+                // (a refining mesh updated before the step, refineMesh.H)
+                if (!refinement.valid())
+                {
+                    mesh.update();
+                }
 
                 if (mesh.changing())
                 {

@@ -89,24 +89,29 @@ mergePatchPairs ();
         self.axisymmetric = True
         dictionary(case, "system/blockMeshDict", body)
 
-    def block_mesh(self, case, patches=None):
-        """patches: dict side->(name, type) for sides left/right/bottom/top; default all 'walls' wall."""
+    def block_mesh(self, case, patches=None, nz=1):
+        """patches: dict side->(name, type) for sides left/right/bottom/top; default all 'walls' wall.
+        nz > 1: a 3D box nz cells of dz deep, its front and back 'walls' too (fields then hold
+        nz copies of the 2D values: np.tile(values, nz))."""
         p = {"left": ("walls", "wall"), "right": ("walls", "wall"),
              "bottom": ("walls", "wall"), "top": ("walls", "wall")}
-        if patches:
-            p.update(patches)
         faces = {"left": "(0 4 7 3)", "right": "(1 2 6 5)", "bottom": "(0 1 5 4)", "top": "(3 7 6 2)",
                  "front": "(0 3 2 1)", "back": "(4 5 6 7)"}
-        p.update(front=("frontAndBack", "empty"), back=("frontAndBack", "empty"))
+        if nz > 1:
+            p.update(front=("walls", "wall"), back=("walls", "wall"))
+        else:
+            p.update(front=("frontAndBack", "empty"), back=("frontAndBack", "empty"))
+        if patches:
+            p.update(patches)
         bnd = patch_entries(p, faces)
-        x1, y1 = self.x0 + self.lx, self.y0 + self.ly
+        x1, y1, z1 = self.x0 + self.lx, self.y0 + self.ly, nz * self.dz
         body = f"""convertToMeters 1;
 vertices
 (
     ({self.x0!r} {self.y0!r} 0) ({x1!r} {self.y0!r} 0) ({x1!r} {y1!r} 0) ({self.x0!r} {y1!r} 0)
-    ({self.x0!r} {self.y0!r} {self.dz!r}) ({x1!r} {self.y0!r} {self.dz!r}) ({x1!r} {y1!r} {self.dz!r}) ({self.x0!r} {y1!r} {self.dz!r})
+    ({self.x0!r} {self.y0!r} {z1!r}) ({x1!r} {self.y0!r} {z1!r}) ({x1!r} {y1!r} {z1!r}) ({self.x0!r} {y1!r} {z1!r})
 );
-blocks ( hex (0 1 2 3 4 5 6 7) ({self.nx} {self.ny} 1) simpleGrading (1 1 1) );
+blocks ( hex (0 1 2 3 4 5 6 7) ({self.nx} {self.ny} {nz}) simpleGrading (1 1 1) );
 edges ();
 boundary
 (

@@ -1,0 +1,163 @@
+#include "cellContentRemap.H"
+#include "mapPolyMesh.H"
+#include "volMesh.H"
+
+namespace Foam
+{
+namespace meltdem
+{
+
+defineTypeNameAndDebug(cellContentRemap, 0);
+
+
+cellContentRemap::cellContentRemap(const fvMesh& mesh)
+:
+    MeshObject<fvMesh, UpdateableMeshObject, cellContentRemap>(mesh)
+{}
+
+
+void cellContentRemap::hold(const word& name, const scalarField& perVolume)
+{
+    content_.set(name, scalarField(perVolume*mesh().V().field()));
+    lost_.set(name, 0);
+}
+
+
+tmp<scalarField> cellContentRemap::release(const word& name)
+{
+    auto iter = content_.find(name);
+    if (!iter.found())
+    {
+        FatalErrorInFunction
+            << "no content '" << name << "' held" << abort(FatalError);
+    }
+    tmp<scalarField> perVolume(new scalarField(iter.val()/mesh().V().field()));
+    content_.erase(iter);
+    return perVolume;
+}
+
+
+void cellContentRemap::holdRange(const word& name, const scalarField& values)
+{
+    lowest_.set(name, values);
+    highest_.set(name, values);
+}
+
+
+void cellContentRemap::releaseRange
+(
+    const word& name, scalarField& lowest, scalarField& highest
+)
+{
+    auto lo = lowest_.find(name);
+    auto hi = highest_.find(name);
+    if (!lo.found() || !hi.found())
+    {
+        FatalErrorInFunction
+            << "no range '" << name << "' held" << abort(FatalError);
+    }
+    lowest.transfer(lo.val());
+    highest.transfer(hi.val());
+    lowest_.erase(lo);
+    highest_.erase(hi);
+}
+
+
+scalar cellContentRemap::lost(const word& name) const
+{
+    return lost_.lookup(name, 0);
+}
+
+
+tmp<scalarField> cellContentRemap::remap
+(
+    const scalarField& oldContent,
+    const labelList& cellMap,
+    const labelList& reverseCellMap,
+    const scalarField& newVolume,
+    scalar& lost
+)
+{
+    const label nOld = oldContent.size();
+    // volume of the new cells that each old cell is split into
+    scalarField childVolume(nOld, 0);
+    forAll(cellMap, celli)
+    {
+        if (cellMap[celli] >= 0) childVolume[cellMap[celli]] += newVolume[celli];
+    }
+    tmp<scalarField> tnew(new scalarField(cellMap.size(), 0));
+    scalarField& content = tnew.ref();
+    forAll(cellMap, celli)
+    {
+        const label parent = cellMap[celli];
+        if (parent >= 0)
+        {
+            content[celli] += oldContent[parent]*(newVolume[celli]/childVolume[parent]);
+        }
+    }
+    // cells merged into a new cell, and cells no new cell took
+    for (label oldi = 0; oldi < nOld; ++oldi)
+    {
+        const label to = reverseCellMap[oldi];
+        if (to < -1)
+        {
+            content[-to - 2] += oldContent[oldi];
+        }
+        else if (to == -1 && childVolume[oldi] == 0)
+        {
+            lost += oldContent[oldi];
+        }
+    }
+    return tnew;
+}
+
+
+void cellContentRemap::remapRange
+(
+    scalarField& lowest,
+    scalarField& highest,
+    const labelList& cellMap,
+    const labelList& reverseCellMap
+)
+{
+    scalarField lo(cellMap.size(), GREAT), hi(cellMap.size(), -GREAT);
+    forAll(cellMap, celli)
+    {
+        if (cellMap[celli] >= 0)
+        {
+            lo[celli] = lowest[cellMap[celli]];
+            hi[celli] = highest[cellMap[celli]];
+        }
+    }
+    forAll(reverseCellMap, oldi)
+    {
+        const label to = reverseCellMap[oldi];
+        if (to < -1)
+        {
+            lo[-to - 2] = min(lo[-to - 2], lowest[oldi]);
+            hi[-to - 2] = max(hi[-to - 2], highest[oldi]);
+        }
+    }
+    lowest.transfer(lo);
+    highest.transfer(hi);
+}
+
+
+void cellContentRemap::updateMesh(const mapPolyMesh& map)
+{
+    forAllIters(lowest_, iter)
+    {
+        remapRange(iter.val(), highest_[iter.key()], map.cellMap(), map.reverseCellMap());
+    }
+    const scalarField& V = mesh().V().field();
+    forAllIters(content_, iter)
+    {
+        scalar lost = 0;
+        scalarField moved(remap(iter.val(), map.cellMap(), map.reverseCellMap(), V, lost));
+        iter.val().transfer(moved);
+        lost_.set(iter.key(), lost_.lookup(iter.key(), 0) + lost);
+    }
+}
+
+} // End namespace meltdem
+} // End namespace Foam

@@ -1,0 +1,34 @@
+#include "meltdemRefineFvMesh.H"
+#include "addToRunTimeSelectionTable.H"
+
+namespace Foam
+{
+
+defineTypeNameAndDebug(meltdemRefineFvMesh, 0);
+addToRunTimeSelectionTable(dynamicFvMesh, meltdemRefineFvMesh, IOobject);
+
+
+meltdemRefineFvMesh::meltdemRefineFvMesh(const IOobject& io)
+:
+    dynamicRefineFvMesh(io)
+{}
+
+
+void meltdemRefineFvMesh::selectRefineCandidates
+(
+    const scalar lowerRefineLevel,
+    const scalar upperRefineLevel,
+    const scalarField& vFld,
+    bitSet& candidateCell
+) const
+{
+    forAll(vFld, celli)
+    {
+        if (vFld[celli] >= lowerRefineLevel && vFld[celli] <= upperRefineLevel)
+        {
+            candidateCell.set(celli);
+        }
+    }
+}
+
+} // End namespace Foam
