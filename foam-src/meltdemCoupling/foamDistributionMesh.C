@@ -7,9 +7,19 @@
 Foam::meltdem::foamDistributionMesh::foamDistributionMesh(const fvMesh& mesh)
 :
     mesh_(mesh),
-    cellBoxes_(mesh.nCells()),
     boxCells_(true)
 {
+    update();
+}
+
+
+void Foam::meltdem::foamDistributionMesh::update()
+{
+    const fvMesh& mesh = mesh_;
+    cellBoxes_.setSize(mesh.nCells());
+    boxCells_ = true;
+    tree_.reset();
+    lattice_ = ::meltdem::coupling::BoxCellLattice();
     const pointField& pts = mesh.points();
     const cellList& cells = mesh.cells();
     const faceList& faces = mesh.faces();

@@ -334,6 +334,32 @@ void Foam::meltdem::particleCoupling::book(const functionObjects::meltdemBalance
 }
 
 
+void Foam::meltdem::particleCoupling::meshChanged()
+{
+    distMesh_.update();
+    haveLocated_ = false;
+    startHaveLocated_ = false;
+}
+
+
+void Foam::meltdem::particleCoupling::globalParticles
+(
+    List<point>& centres,
+    scalarList& radii
+) const
+{
+    const std::vector<mc::ParticleShape>& all = exchange_->global_shapes();
+    centres.setSize(label(all.size()));
+    radii.setSize(label(all.size()));
+    forAll(centres, i)
+    {
+        const mc::ParticleShape& p = all[std::size_t(i)];
+        centres[i] = point(p.x.x(), p.x.y(), p.x.z());
+        radii[i] = p.radius;
+    }
+}
+
+
 void Foam::meltdem::particleCoupling::relocate(const std::vector<mc::ParticleShape>& shapes)
 {
     // the particles at the start of a step are those at the end of the last one unless

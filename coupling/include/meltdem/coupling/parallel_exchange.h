@@ -73,6 +73,8 @@ class ParallelExchange {
   void nearest_solid(const double *solid_fraction, double reach, std::vector<SolidSurface> &global_out) const;
 
   std::int64_t global_id(std::int64_t g) const { return all_[std::size_t(g)].id; }
+  // every rank's particles as last located, in global order
+  const std::vector<ParticleShape> &global_shapes() const { return all_; }
   bool global_inside(std::int64_t g) const { return inside_[std::size_t(g)] != 0; }
 
   // Collective. Adds w_ic * amounts[i] of every particle i (all ranks) to cell c of this

@@ -1,0 +1,122 @@
+#!/usr/bin/env python3
+"""A grain melting into a refining pool: the coupled exchange on a mesh that refines around the
+grain and the interface while the grain melts.
+
+The Codina2019 §2.3 particle (thesis_particle.py: d = 600 um, 2 m/s down a channel of 0.7 mm
+cells in gas at 1500 K) over a liquid metal floor (y < 2 mm, 1200 K, above the grain's melting
+point 1000 K). constant/meltdemProperties refinement{} asks for level 1 (0.35 mm) at the
+interface and around the grain (criterion particles, near anywhere, 1 diameter), so cells are
+split ahead of the grain and merged behind it, and the grain's melt reaches refined cells.
+
+Checks (label coupling amr):
+  - per-step balance errors of the continuum from the particle ledger (mass 1e-13, energy 1e-6);
+  - overlap: the grain's whole mass handed over (1e-12); every model: the continuum's cumulative
+    mass error over the run (1e-12);
+  - every mesh change conserves metal and enthalpy (|after/before - 1| <= 1e-12), the mesh both
+    split and merged cells while the grain was in it;
+  - np 2 (--np 2): the same, and against serial the ledger totals within 1e-10 of the largest total
+    (expected to fail: the runs part at the first mesh change, see the check's reason).
+usage: amr_particle.py [--np N] [--model centre|neighbours|overlap] [--keep]
+"""
+import argparse
+import glob
+import os
+import sys
+import tempfile
+
+import numpy as np
+
+from meltdem.case import coupled as cc
+from meltdem.case import foam as fc
+from meltdem.testing.report import check_at_most, check_relative, report
+
+D, RHO_P, CP_P, TM = 600e-6, 8020.0, 48.35, 1000.0
+M_P = RHO_P * np.pi * D**3 / 6
+L = 0.248611 / M_P
+T_END = 12e-3
+
+REFINEMENT = """refinement
+{
+    maxLevel        1;
+    refineInterval  1;
+    nBufferLayers   0;
+    criteria
+    {
+        interface { level 1; }
+        grains    { type particles; level 1; diameters 1; near (anywhere); }
+    }
+}
+"""
+
+
+def build(case, model):
+    cc.channel_case(case, model, dict(d=D, rho=RHO_P, cp=CP_P, Tm=TM, L=L, T0=0.0, y=17.6e-3),
+                    t_end=T_END, floor=(2e-3, 1200.0), extra_properties=REFINEMENT)
+    # the flux correction after each mesh change (correctPhi) as tight as the other solves:
+    # at its default 1e-8 the serial and parallel fluxes differ by that much
+    sol = os.path.join(case, "system", "fvSolution")
+    txt = open(sol).read()
+    assert '"pcorr.*" { solver PCG; preconditioner DIC; tolerance 1e-8;' in txt
+    open(sol, "w").write(txt.replace('"pcorr.*" { solver PCG; preconditioner DIC; tolerance 1e-8;',
+                                     '"pcorr.*" { solver PCG; preconditioner DIC; tolerance 1e-15;'))
+
+
+def remap_checks(test, case):
+    ref = np.atleast_1d(np.genfromtxt(glob.glob(os.path.join(case, "postProcessing", "refinement", "*",
+                                                             "refinement.csv"))[0], delimiter=",", names=True))
+    split = int(np.sum(ref["cellsAfter"] > ref["cellsBefore"]))
+    merged = int(np.sum(ref["cellsAfter"] < ref["cellsBefore"]))
+    print(f"{test}: {len(ref)} mesh changes, cells {int(ref['cellsBefore'][0])} -> {int(ref['cellsAfter'][-1])} "
+          f"(most {int(np.max(ref['cellsAfter']))}), {split} with more cells, {merged} with fewer")
+    worst = max(float(np.max(np.abs(ref[f"{c}After"] / ref[f"{c}Before"] - 1))) for c in ("metal", "enthalpy"))
+    ok = check_at_most(test, "metal and enthalpy across each mesh change, max |after/before - 1|", worst, 1e-12)
+    ok &= report(test, "mesh changes that split cells and that merged cells (both > 0)", f"{split}, {merged}",
+                 "> 0, > 0", "bound", split > 0 and merged > 0)
+    return ok
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--np", type=int, default=1)
+    ap.add_argument("--model", default="overlap")
+    ap.add_argument("--keep", action="store_true")
+    a = ap.parse_args()
+    test = f"coupling.amr_particle.{a.model}" + (f".np{a.np}" if a.np > 1 else "")
+    work = tempfile.mkdtemp(prefix="meltdem-amr-particle-")
+    case = os.path.join(work, "case")
+    build(case, a.model)
+    if a.np > 1:
+        cc.decompose(case, a.np)
+    cc.run_solver(case, a.np)
+    d = cc.ledger(case)
+    p = cc.particles_csv(case)
+    ok = cc.check_balances(test, d)
+    melted = np.sum(p["mass_melted"])
+    if a.model == "overlap":
+        ok &= check_relative(test, "metal mass handed over vs particle mass [kg]", melted, M_P, 1e-12)
+    else:
+        print(f"{test}: {melted / M_P:.3f} of the grain molten at {T_END} s (the gas it cools is more "
+              "concentrated than with overlap)")
+    drift = float(np.max(np.abs(d["mass_cumulative_continuum_error"])))
+    ok &= check_at_most(test, "cumulative continuum mass error over the run (relative)", drift, 1e-12)
+    ok &= remap_checks(test, case)
+    if a.np > 1:
+        serial = os.path.join(work, "serial")
+        build(serial, a.model)
+        cc.run_solver(serial)
+        s = cc.ledger(serial)
+        worst = 0.0
+        momentum = np.max(np.sqrt(sum(s[f"mom_{k}_total"] ** 2 for k in "xyz")))
+        for c in ("mass", "enthalpy", "mom_x", "mom_y", "mom_z"):
+            scale = momentum if c.startswith("mom") else np.max(np.abs(s[f"{c}_total"]))
+            for cat in ("particles", "continuum", "exchange"):
+                worst = max(worst, np.max(np.abs(d[f"{c}_{cat}"] - s[f"{c}_{cat}"])) / scale)
+        ok &= check_at_most(test, f"ledger totals np {a.np} vs serial (relative to the largest total)", worst, 1e-10,
+                            xfail="with refinement the serial and decomposed runs part from the first mesh change in "
+                                  "the gas cells beside the grain (T min 1153.04 vs 1153.24 K one step later; without "
+                                  "refinement they agree to 2e-11); each conserves to 1e-13, the cause is not found")
+    return fc.finish(ok, work, a.keep)
+
+
+if __name__ == "__main__":
+    sys.exit(main())
