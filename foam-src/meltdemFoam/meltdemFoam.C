@@ -39,6 +39,7 @@ Description
 #include "caseCheckpoint.H"
 #include "caseLock.H"
 #include "meshRefinement.H"
+#include "interfaceDeltaN.H"
 #include "dynamicRefineFvMesh.H"
 #include "energyTransport.H"
 #include "upwind.H"
@@ -213,6 +214,10 @@ int main(int argc, char *argv[])
         }
 
         const bool writeOk = runTime.write();
+        if (refinement.valid() && runTime.writeTime())
+        {
+            Foam::meltdem::writeInterfaceDeltaN(runTime, mixture);
+        }
 
         if (particles.valid())
         {

@@ -14,6 +14,14 @@ meltdemRefineFvMesh::meltdemRefineFvMesh(const IOobject& io)
 {}
 
 
+bool meltdemRefineFvMesh::update()
+{
+    const bool changed = dynamicRefineFvMesh::update();
+    const_cast<refinementHistory&>(meshCutter().history()).compact();
+    return changed;
+}
+
+
 void meltdemRefineFvMesh::selectRefineCandidates
 (
     const scalar lowerRefineLevel,

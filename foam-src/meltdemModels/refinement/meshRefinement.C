@@ -236,6 +236,12 @@ void meshRefinement::checkMesh() const
 }
 
 
+void meshRefinement::idle()
+{
+    mesh_.topoChanging(false);
+}
+
+
 bool meshRefinement::due() const
 {
     const label index = mesh_.time().timeIndex();
@@ -290,7 +296,11 @@ bool meshRefinement::update
     const HashTable<scalarField>& ranges
 )
 {
-    if (!due()) return false;
+    if (!due())
+    {
+        idle();
+        return false;
+    }
 
     const auto& refiner = refCast<const dynamicRefineFvMesh>(mesh_);
     const labelList level(requestedLevel(s));
