@@ -173,8 +173,28 @@ run             0
 """)
 
 
+def refinement_dict(levels, fluid_dt, interval=1):
+    """refinement{} of a --refine run: the finest cells in the melt pool and the metal about to melt,
+    under the beam and where it will be over the next half spot of travel (at least until the next
+    update), and around the grains near either; coarse cells elsewhere."""
+    ahead = max(interval, int(round(0.5 * SPOT / (SPEED * fluid_dt))))
+    return f"""refinement
+{{
+    maxLevel        {levels};
+    refineInterval  {interval};
+    nBufferLayers   1;
+    criteria
+    {{
+        meltPool {{ level {levels}; belowSolidus 300; }}
+        laser    {{ level {levels}; radii 1.5; lookAhead {ahead}; }}
+        grains   {{ type particles; level {levels}; diameters 1; near (pool beam); }}
+    }}
+}}
+"""
+
+
 def build(case, variant, cell=None, bed=None, track=None, distribution="overlap", np_=1, gas_cp=None, fluid_dt=None,
-          gas_mu=None, surface=None):
+          gas_mu=None, surface=None, refine=0, refine_interval=1):
     v = dict(VARIANTS[variant])
     surface = SURFACE if surface is None else surface
     gas_cp = gas_cp or GAS_CP_CASE
@@ -184,9 +204,10 @@ def build(case, variant, cell=None, bed=None, track=None, distribution="overlap"
     if track:
         v["x1"] = v["x0"] + track
     v["np"] = np_
-    h = v["cell"]
+    h_fine = v["cell"]
+    h = h_fine * 2 ** refine                     # the base mesh (refined to h_fine where needed)
     v["sub"] = max(h, round(v["sub"] / h) * h)   # substrate top (y = 0) on a cell face
-    v["top"] = round(v["top"] / h) * h
+    v["top"] = max(h, round(v["top"] / h) * h)
     n = (int(round(v["lx"] / h)), int(round((v["sub"] + v["top"]) / h)), int(round(v["lz"] / h)))
     os.makedirs(case, exist_ok=True)
     dump = spread_bed(case, v) if bed == "spread" else bed or pour_bed(case, v)
@@ -195,7 +216,7 @@ def build(case, variant, cell=None, bed=None, track=None, distribution="overlap"
     t_end = t_scan + v["cool"]
     zc = v["lz"] / 2
     # capillary limit dt <= sqrt(rho_mean h^3 / (2 pi sigma)), with a margin
-    dt_cap = 0.5 * np.sqrt(0.5 * (RHO + GAS["rho"]) * h ** 3 / (2 * np.pi * SIGMA0))
+    dt_cap = 0.5 * np.sqrt(0.5 * (RHO + GAS["rho"]) * h_fine ** 3 / (2 * np.pi * SIGMA0))
     # fixed sub-cycles (see README): the fluid step is n_sub DEM steps (FLUID_DT; below the
     # capillary limit when surface tension is on)
     fluid_dt = fluid_dt or FLUID_DT
@@ -222,8 +243,14 @@ def build(case, variant, cell=None, bed=None, track=None, distribution="overlap"
                       "atmosphere": "type totalPressure; p0 uniform 0; value uniform 0;"})
     fc.transport(case, RHO, MU_MELT / RHO, GAS["rho"], gas_mu / GAS["rho"], SIGMA0)
     fc.gravity(case, (0.0, -G, 0.0))
+    cell_fields = "" if not refine else """functions
+{
+    centres { type writeCellCentres; libs (fieldFunctionObjects); writeControl writeTime; }
+    volumes { type writeCellVolumes; libs (fieldFunctionObjects); writeControl writeTime; }
+}
+"""
     fc.control_dict(case, "meltdemFoam", t_end, dt_cap / 4, v["write"], max_co=0.3, max_alpha_co=0.3,
-                    max_dt=dt_cap)
+                    max_dt=dt_cap, extra=cell_fields)
     fc.fv_schemes(case)
     fc.fv_solution(case, n_correctors=3)
     cc.exact_solves(case, p_rgh=1e-12, T=1e-14)   # the ledger balances (as tests/coupling)
@@ -255,15 +282,17 @@ particles
     distribution    {distribution};
     demStepsPerFluidStep {n_sub};
 }}
-""")
+{refinement_dict(refine, n_sub * DEM_DT, refine_interval) if refine else ""}""")
     dump_every = 1000  # DEM steps (5 us between snapshots)
     lammps_input(case, v, dump_every)
     meta = dict(scene="slm-track", variant=variant, n_cells=list(n), particles=nparticles, t_scan_s=t_scan,
                 t_end_s=t_end, laser_x0_m=v["x0"], laser_x1_m=v["x1"], track_z_m=zc, dt_capillary_s=dt_cap,
                 distribution=distribution, bed_dump=os.path.abspath(dump), gas_cp=gas_cp, gas_mu=gas_mu,
-                fluid_dt_s=n_sub * DEM_DT, **{k: v[k] for k in ("lx", "lz", "top", "sub", "cell", "cool", "write")})
+                fluid_dt_s=n_sub * DEM_DT, refine=refine, base_cell=h,
+                **{k: v[k] for k in ("lx", "lz", "top", "sub", "cell", "cool", "write")})
     json.dump(meta, open(os.path.join(case, "scene.json"), "w"), indent=1)
-    print(f"case {case}: {variant}, {n[0]}x{n[1]}x{n[2]} cells of {h * 1e6:g} um, {nparticles} particles, "
+    print(f"case {case}: {variant}, {n[0]}x{n[1]}x{n[2]} cells of {h * 1e6:g} um"
+          f"{f' refined to {h_fine * 1e6:g} um' if refine else ''}, {nparticles} particles, "
           f"track x {v['x0'] * 1e3:g}-{v['x1'] * 1e3:g} mm ({t_scan * 1e3:g} ms) + {v['cool'] * 1e6:g} us cooling")
 
 
@@ -287,6 +316,31 @@ def run(case, np_=1):
 # ---------------------------------------------------------------------------------------- analyse
 
 
+def lattice_field(case, time, name, meta):
+    """A written field on the lattice of the finest cells, (nz, ny, nx): as written on a uniform
+    mesh; on a refined one (--refine) each cell's value fills the finest cells it covers (its
+    centre and volume from the C and V the run writes)."""
+    f = 2 ** meta.get("refine", 0)
+    nx, ny, nz = (k * f for k in meta["n_cells"])
+    values = np.asarray(fc.read_internal(os.path.join(case, time, name)), dtype=float)
+    if f == 1:
+        return (values * np.ones(nx * ny * nz)).reshape(nz, ny, nx)
+    C = np.asarray(fc.read_internal(os.path.join(case, time, "C")), dtype=float).reshape(-1, 3)
+    V = np.asarray(fc.read_internal(os.path.join(case, time, "V")), dtype=float) * np.ones(len(C))
+    values = values * np.ones(len(C))
+    h = meta["cell"]
+    out = np.full((nz, ny, nx), np.nan)
+    span = np.rint(np.cbrt(V) / h).astype(int)            # finest cells per edge of each cell
+    lo = np.rint((C - 0.5 * span[:, None] * h - np.array([0.0, -meta["sub"], 0.0])) / h).astype(int)
+    for k in np.unique(span):
+        sel = np.nonzero(span == k)[0]
+        for dz in range(k):
+            for dy in range(k):
+                for dx in range(k):
+                    out[lo[sel, 2] + dz, lo[sel, 1] + dy, lo[sel, 0] + dx] = values[sel]
+    return out
+
+
 def track_geometry(case, meta):
     """Melted region = metal cells (alpha >= 1/2) whose temperature reached T_half (liquid fraction
     1/2, the middle of the melting range) at some written time; its boundary is interpolated
@@ -294,17 +348,17 @@ def track_geometry(case, meta):
     depth = below the substrate top on the track axis, height = final metal above the substrate
     top (column sum of alpha); medians over the x-slices of the middle of the track (one spot
     diameter away from its start and end)."""
-    nx, ny, nz = meta["n_cells"]
+    f = 2 ** meta.get("refine", 0)
+    nx, ny, nz = (k * f for k in meta["n_cells"])
     h = meta["cell"]
-    n = nx * ny * nz
     t_half = 0.5 * (TSOL + TLIQ)
     times = [d for d in fc.time_dirs(case) if float(d) > 0]
     tmax = np.full((nz, ny, nx), T0)
     for d in times:
-        a = fc.read_internal(os.path.join(case, d, "alpha.metal")) * np.ones(n)
-        T = fc.read_internal(os.path.join(case, d, "T")) * np.ones(n)
-        tmax = np.maximum(tmax, np.where(a >= 0.5, T, T0).reshape(nz, ny, nx))
-    alpha_end = (fc.read_internal(os.path.join(case, times[-1], "alpha.metal")) * np.ones(n)).reshape(nz, ny, nx)
+        a = lattice_field(case, d, "alpha.metal", meta)
+        T = lattice_field(case, d, "T", meta)
+        tmax = np.maximum(tmax, np.where(a >= 0.5, T, T0))
+    alpha_end = lattice_field(case, times[-1], "alpha.metal", meta)
     xc = (np.arange(nx) + 0.5) * h
     yc = -meta["sub"] + (np.arange(ny) + 0.5) * h
     zc = (np.arange(nz) + 0.5) * h
@@ -523,13 +577,17 @@ def main(argv=None):
     ap.add_argument("--fluid-dt", type=float, help=f"fluid step [s] (default {FLUID_DT:g})")
     ap.add_argument("--surface", action="store_true", help="surface tension and Marangoni on (see README)")
     ap.add_argument("--gas-mu", type=float, help="gas viscosity [Pa s] (default argon's 2.2e-5)")
+    ap.add_argument("--refine", type=int, default=0, metavar="L",
+                    help="adaptive refinement: base cells 2^L x --cell, refined to --cell in the pool, under "
+                    "the beam and its path ahead and around the grains near them (refinement{})")
+    ap.add_argument("--refine-interval", type=int, default=1, metavar="N", help="fluid steps between mesh updates")
     a = ap.parse_args(argv)
     case = os.path.abspath(a.case)
     variant = "full" if a.full else "ci"
     if a.command in ("build", "all"):
         bed = a.bed if a.bed in (None, "spread") else os.path.abspath(a.bed)
         build(case, variant, a.cell, bed, a.track, a.distribution, a.np, a.gas_cp,
-              a.fluid_dt, a.gas_mu, a.surface or None)
+              a.fluid_dt, a.gas_mu, a.surface or None, a.refine, a.refine_interval)
     if a.command in ("run", "all"):
         run(case, a.np)
     if a.command in ("analyse", "all"):

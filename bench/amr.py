@@ -1,0 +1,105 @@
+#!/usr/bin/env python3
+"""Adaptive refinement against the uniform finest mesh: examples/slm-track CI (0.3 x 0.3 mm floor,
+153 grains, 0.2 mm of track at 0.5 m/s, 100 W, 0.1 mm spot), the same poured bed and fluid step
+for every run. Each pair: the uniform mesh of cell h, and a base mesh of 2^L h refined to h by the
+scene's refinement{} (--refine L: melt pool and metal within 300 K of melting, the beam's footprint
+and its path over the next half spot, grains near either). Reported: track width and depth (on the
+lattice of the finest cells), most cells, solver CPU (LAMMPS included), the width and depth change
+against the uniform run and the CPU ratio uniform/AMR. Writes amr.md and amr.png next to this
+script.
+
+    /usr/bin/python3 bench/amr.py [--pairs 15e-6:1,10e-6:1] [--fluid-dt 1e-6] [--work DIR] [--out DIR]
+
+Run by hand (minutes per run).
+"""
+import argparse
+import glob
+import json
+import os
+import sys
+
+import numpy as np
+
+from meltdem import scene as scenes
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+scene = scenes.module("slm-track")
+
+
+def most_cells(case, meta):
+    refs = glob.glob(os.path.join(case, "postProcessing", "refinement", "*", "refinement.csv"))
+    if not refs:
+        return int(np.prod(meta["n_cells"]))
+    r = np.atleast_1d(np.genfromtxt(refs[0], delimiter=",", names=True))
+    return int(max(np.max(r["cellsAfter"]), np.prod(meta["n_cells"])))
+
+
+def one(work, bed, h, levels, fluid_dt):
+    case = os.path.join(work, f"h{h * 1e6:g}um_L{levels}")
+    scene.build(case, "ci", cell=h, bed=bed, fluid_dt=fluid_dt, refine=levels)
+    scene.run(case)
+    s = scene.analyse(case)
+    meta = json.load(open(os.path.join(case, "scene.json")))
+    return dict(cell_um=h * 1e6, levels=levels, base_um=meta["base_cell"] * 1e6, cells=most_cells(case, meta),
+                width_um=s["track_width_m"] * 1e6, depth_um=s["track_depth_m"] * 1e6, cpu_s=s["cpu_s"],
+                wall_s=s["wall_s"])
+
+
+def write(rows, fluid_dt, out):
+    lines = ["# Adaptive refinement vs the uniform finest mesh (slm-track CI)", "",
+             f"`bench/amr.py`: {__doc__.split(chr(10) + chr(10))[0].split(': ', 1)[1]} Fluid step "
+             f"{fluid_dt * 1e6:g} us for every run; one rank; CPU = the solver's ExecutionTime.", "",
+             "| finest cell [um] | mesh | base cell [um] | most cells | width [um] | depth [um] | CPU [s] | "
+             "width vs uniform | depth vs uniform | CPU uniform / AMR |", "|---|---|---|---|---|---|---|---|---|---|"]
+    for u in (r for r in rows if r["levels"] == 0):
+        lines.append(f"| {u['cell_um']:g} | uniform | {u['base_um']:g} | {u['cells']} | {u['width_um']:.1f} | "
+                     f"{u['depth_um']:.1f} | {u['cpu_s']:.0f} | | | |")
+        for r in (r for r in rows if r["levels"] > 0 and r["cell_um"] == u["cell_um"]):
+            lines.append(f"| {r['cell_um']:g} | AMR, {r['levels']} level(s) | {r['base_um']:g} | {r['cells']} | "
+                         f"{r['width_um']:.1f} | {r['depth_um']:.1f} | {r['cpu_s']:.0f} | "
+                         f"{(r['width_um'] / u['width_um'] - 1) * 100:+.1f} % | "
+                         f"{(r['depth_um'] / u['depth_um'] - 1) * 100:+.1f} % | {u['cpu_s'] / r['cpu_s']:.2f} |")
+    open(os.path.join(out, "amr.md"), "w").write("\n".join(lines) + "\n")
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, ax = plt.subplots(1, 2, figsize=(9, 3.6))
+    for lv, mk in ((0, "o-"), (1, "s--"), (2, "^:")):
+        sel = sorted((r for r in rows if r["levels"] == lv), key=lambda r: r["cell_um"])
+        if not sel:
+            continue
+        lab = "uniform" if lv == 0 else f"AMR {lv} level(s)"
+        ax[0].plot([r["cell_um"] for r in sel], [r["width_um"] for r in sel], mk, label=lab)
+        ax[1].plot([r["cell_um"] for r in sel], [r["cpu_s"] for r in sel], mk, label=lab)
+    ax[0].set_xlabel("finest cell [um]")
+    ax[0].set_ylabel("track width [um]")
+    ax[1].set_xlabel("finest cell [um]")
+    ax[1].set_ylabel("solver CPU [s]")
+    ax[0].legend()
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "amr.png"), dpi=110)
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--pairs", default="15e-6:1,10e-6:1", help="finest cell:levels, ...")
+    ap.add_argument("--fluid-dt", type=float, default=1e-6)
+    ap.add_argument("--work", default="/tmp/meltdem-amr")
+    ap.add_argument("--out", default=HERE)
+    a = ap.parse_args()
+    os.makedirs(a.work, exist_ok=True)
+    bed = os.path.join(a.work, "bed", "bed.dump")
+    if not os.path.exists(bed):
+        scene.pour_bed(a.work, dict(scene.VARIANTS["ci"], np=1))
+    rows = []
+    for pair in a.pairs.split(","):
+        h, levels = float(pair.split(":")[0]), int(pair.split(":")[1])
+        rows.append(one(a.work, bed, h, 0, a.fluid_dt))
+        rows.append(one(a.work, bed, h, levels, a.fluid_dt))
+        json.dump(rows, open(os.path.join(a.work, "results.json"), "w"), indent=1)
+    write(rows, a.fluid_dt, a.out)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
