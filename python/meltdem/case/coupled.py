@@ -235,3 +235,18 @@ def check_balances(test, ledger_rows, mass=1e-13, energy=1e-6, momentum=None, xf
         ok &= check_at_most(test, "worst per-step continuum momentum error (eq. 2.36)", worst, momentum,
                             xfail=xfail or momentum_xfail)
     return ok
+
+
+def ledger_totals_difference(run, reference):
+    """The largest difference between two runs' ledger totals (particles, continuum, exchange of mass,
+    enthalpy and momentum) over their steps, relative to the reference's largest total (a momentum
+    component against the momentum magnitude): np N against serial, step by step."""
+    if len(run) != len(reference):
+        raise ValueError(f"the ledgers have {len(run)} and {len(reference)} steps")
+    worst = 0.0
+    momentum = np.max(np.sqrt(sum(reference[f"mom_{k}_total"] ** 2 for k in "xyz")))
+    for c in ("mass", "enthalpy", "mom_x", "mom_y", "mom_z"):
+        scale = momentum if c.startswith("mom") else np.max(np.abs(reference[f"{c}_total"]))
+        for cat in ("particles", "continuum", "exchange"):
+            worst = max(worst, np.max(np.abs(run[f"{c}_{cat}"] - reference[f"{c}_{cat}"])) / scale)
+    return float(worst)

@@ -96,13 +96,7 @@ def main():
         build(serial, a.model)
         cc.run_solver(serial)
         s = cc.ledger(serial)
-        worst = 0.0
-        momentum = np.max(np.sqrt(sum(s[f"mom_{k}_total"] ** 2 for k in "xyz")))
-        for c in ("mass", "enthalpy", "mom_x", "mom_y", "mom_z"):
-            # a momentum component is compared against the momentum magnitude
-            scale = momentum if c.startswith("mom") else np.max(np.abs(s[f"{c}_total"]))
-            for cat in ("particles", "continuum", "exchange"):
-                worst = max(worst, np.max(np.abs(d[f"{c}_{cat}"] - s[f"{c}_{cat}"])) / scale)
+        worst = cc.ledger_totals_difference(d, s)
         ok &= check_at_most(test, f"ledger totals np {a.np} vs serial (relative to the largest total)", worst, 1e-10)
 
     return fc.finish(ok, work, a.keep)

@@ -27,12 +27,14 @@ import tempfile
 
 import numpy as np
 
+from meltdem import paths
 from meltdem.case import foam as fc
 from meltdem.testing.report import check_at_most, report
 
+sys.path.insert(0, os.path.join(paths.source_dir(), "tests", "foam", "mass_drift"))
+import mass_drift  # noqa: E402
+
 TEST = "foam.amr_dam_break"
-RHO_M, RHO_G = 7430.0, 7.43
-TS, TL = 1700.0, 1710.0
 T_END = 0.008
 T_END_PARALLEL = 0.003
 NZ = 2
@@ -52,49 +54,9 @@ REFINEMENT = """refinement
 
 
 def build(case, n=16, t_end=T_END):
-    g = fc.Grid2D(4e-3, 4e-3, n, n)
-    g.block_mesh(case, patches={"bottom": ("floor", "wall")}, nz=NZ)
-    floor = g.y < 1e-3
-    column = (g.x < 1e-3) & (g.y > 1e-3) & (g.y < 3e-3)
-    alpha = np.tile(np.where(floor | column, 1.0, 0.0), NZ)
-    T = np.tile(np.where(column, 2000.0, 1600.0), NZ)
-    zg = "type zeroGradient;"
-    fc.field(case, "alpha.metal", "[0 0 0 0 0 0 0]", alpha, {"walls": zg, "floor": zg})
-    fc.field(case, "T", "[0 0 0 1 0 0 0]", T,
-             {"walls": zg, "floor": "type fixedValue; value uniform 1600;"})
-    fc.field(case, "U", "[0 1 -1 0 0 0 0]", np.zeros((alpha.size, 3)),
-             {"walls": "type noSlip;", "floor": "type noSlip;"}, vector=True)
-    fc.field(case, "p_rgh", "[1 -1 -2 0 0 0 0]", np.zeros(alpha.size),
-             {"walls": "type fixedFluxPressure; value uniform 0;",
-              "floor": "type fixedFluxPressure; value uniform 0;"})
-    fc.transport(case, RHO_M, 6e-3 / RHO_M, RHO_G, 6e-4 / RHO_G, 1.8)
-    fc.gravity(case, (0.0, -9.81, 0.0))
-    extra = f"""metal {{ Tsolidus {TS!r}; Tliquidus {TL!r}; L 2.7e5; cp 965; k 35.95; }}
-gas {{ cp 10; k 0.026; }}
-darcy {{ C 1e10; b 1e-3; }}
-energyControls {{ nCorrectors 50; tolerance 1e-12; }}
-{REFINEMENT}"""
-    fc.meltdem_properties(case, physics={"flow": "on", "energy": "on", "darcy": "on",
-                                         "surfaceTension": "off"}, extra=extra)
-    fc.control_dict(case, "meltdemFoam", t_end, 1e-5, t_end / 3, max_co=0.3, max_alpha_co=0.3,
-                    max_dt=2e-4, extra="""functions
-{
-    balance { type meltdemBalance; }
-    centres { type writeCellCentres; libs (fieldFunctionObjects); writeControl writeTime; }
-}
-""")
-    fc.fv_schemes(case, extra_div="    div(rhoCpPhi,T) Gauss vanLeer;\n")
-    fc.fv_solution(case, p_ref_cell=0,
-                   extra_solvers='    "T.*" { solver PBiCGStab; preconditioner DILU; '
-                                 'tolerance 1e-13; relTol 0; }\n')
-    path = os.path.join(case, "system", "fvSolution")
-    with open(path) as f:
-        txt = f.read()
-    txt = txt.replace("tolerance 1e-10; relTol 0;\n    }", "tolerance 1e-14; relTol 0;\n    }", 1)
-    with open(path, "w") as f:
-        f.write(txt)
-    fc.run(["blockMesh"], case, "log.blockMesh")
-    return g
+    mass_drift.build(case, n=n, nz=NZ, t_end=t_end, extra_properties=REFINEMENT, p_ref_cell=0,
+                     extra_functions="    centres { type writeCellCentres; libs (fieldFunctionObjects); "
+                                     "writeControl writeTime; }\n")
 
 
 def conservation(case, label):

@@ -99,6 +99,18 @@ def fatal_text(out):
     return out[i:] if i >= 0 else ""
 
 
+def judge(name, rc, out, text, words):
+    """(whether a bad-input run stopped as it should: non-zero exit, no signal, the error text
+    holding every word; the measured outcome in words), printing the error's first lines."""
+    signal = rc < 0 or rc >= 128 or re.search(r"Foam::sigSegv|Foam::sigFpe|printStack|Segmentation fault", out)
+    named = bool(text) and all(w in text for w in words)
+    first = " ".join(text.split("\n")[1:3]).strip()[:160] if text else out.strip()[-160:]
+    print(f"{name}: rc {rc}; {first!r}")
+    measured = (f"rc {rc}, {'fatal error' if text else 'no fatal error'}, "
+                f"{'names it' if named else 'does not name it'}")
+    return rc != 0 and not signal and named, measured
+
+
 def main():
     keep = "--keep" in sys.argv
     work = tempfile.mkdtemp(prefix="bad_input.")
@@ -114,15 +126,8 @@ def main():
         case = os.path.join(work, name)
         build(case, physics, metal, gas, extra)
         rc, out = run(case)
-        text = fatal_text(out)
-        signal = rc < 0 or rc >= 128 or re.search(r"Foam::sigSegv|Foam::sigFpe|printStack|Segmentation fault", out)
-        named = bool(text) and all(w in text for w in words)
-        good = rc != 0 and not signal and named
-        first = " ".join(text.split("\n")[1:3]).strip()[:140] if text else out.strip()[-140:]
-        print(f"{name}: rc {rc}; {first!r}")
-        ok &= report(TEST, f"{what}: FatalIOError naming {' '.join(words)}",
-                     f"rc {rc}, {'FatalIOError' if text else 'no FatalIOError'}, "
-                     f"{'names it' if named else 'does not name it'}",
+        good, measured = judge(name, rc, out, fatal_text(out), words)
+        ok &= report(TEST, f"{what}: FatalIOError naming {' '.join(words)}", measured,
                      "FatalIOError naming the entry", "exact", good)
     return fc.finish(ok, work, keep)
 

@@ -36,13 +36,17 @@ TS, TL = 1700.0, 1710.0
 T_END = 0.03
 
 
-def build(case, n=40, alpha_tol="1e-14"):
+def build(case, n=40, alpha_tol="1e-14", nz=1, t_end=T_END, extra_properties="", extra_functions="",
+          p_ref_cell=None):
+    """The dam break on n x n cells of 0.1 mm (4 mm / n); nz > 1: a 3D box nz cells deep (walls in
+    front and behind), the 2D layout repeated through it. extra_properties goes into
+    meltdemProperties, extra_functions into controlDict's functions (foam.amr_dam_break)."""
     g = fc.Grid2D(4e-3, 4e-3, n, n)
-    g.block_mesh(case, patches={"bottom": ("floor", "wall")})
+    g.block_mesh(case, patches={"bottom": ("floor", "wall")}, nz=nz)
     floor = g.y < 1e-3
     column = (g.x < 1e-3) & (g.y > 1e-3) & (g.y < 3e-3)
-    alpha = np.where(floor | column, 1.0, 0.0)
-    T = np.where(column, 2000.0, 1600.0)
+    alpha = np.tile(np.where(floor | column, 1.0, 0.0), nz)
+    T = np.tile(np.where(column, 2000.0, 1600.0), nz)
     zg = "type zeroGradient;"
     fc.field(case, "alpha.metal", "[0 0 0 0 0 0 0]", alpha, {"walls": zg, "floor": zg})
     fc.field(case, "T", "[0 0 0 1 0 0 0]", T,
@@ -58,17 +62,17 @@ def build(case, n=40, alpha_tol="1e-14"):
 gas {{ cp 10; k 0.026; }}
 darcy {{ C 1e10; b 1e-3; }}
 energyControls {{ nCorrectors 50; tolerance 1e-12; }}
-"""
+{extra_properties}"""
     fc.meltdem_properties(case, physics={"flow": "on", "energy": "on", "darcy": "on",
                                          "surfaceTension": "off"}, extra=extra)
-    fc.control_dict(case, "meltdemFoam", T_END, 1e-5, T_END / 3, max_co=0.3, max_alpha_co=0.3,
-                    max_dt=2e-4, extra="""functions
-{
-    balance { type meltdemBalance; }
-}
+    fc.control_dict(case, "meltdemFoam", t_end, 1e-5, t_end / 3, max_co=0.3, max_alpha_co=0.3,
+                    max_dt=2e-4, extra=f"""functions
+{{
+    balance {{ type meltdemBalance; }}
+{extra_functions}}}
 """)
     fc.fv_schemes(case, extra_div="    div(rhoCpPhi,T) Gauss vanLeer;\n")
-    fc.fv_solution(case, p_ref_cell=n * n - 1,
+    fc.fv_solution(case, p_ref_cell=n * n - 1 if p_ref_cell is None else p_ref_cell,
                    extra_solvers='    "T.*" { solver PBiCGStab; preconditioner DILU; '
                                  'tolerance 1e-13; relTol 0; }\n')
     # the alpha predictor's linear solve sets the conservation level
