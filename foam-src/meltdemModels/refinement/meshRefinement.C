@@ -236,6 +236,16 @@ void meshRefinement::checkMesh() const
 }
 
 
+bool meshRefinement::needsParticles() const
+{
+    for (const refinementCriterion& c : criteria_)
+    {
+        if (c.type() == "particles") return true;
+    }
+    return false;
+}
+
+
 void meshRefinement::idle()
 {
     mesh_.topoChanging(false);
