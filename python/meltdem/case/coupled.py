@@ -67,6 +67,15 @@ def run_solver(case, np_=1, log="log.meltdemFoam", check=True):
     return fc.run(mpirun + [solver, "-parallel"], case, log, env=env, check=check)
 
 
+def build_and_run(case, build, np_=1):
+    """build(case), decomposed for np_ > 1, run; the particle ledger and particles.csv of the run."""
+    build(case)
+    if np_ > 1:
+        decompose(case, np_)
+    run_solver(case, np_)
+    return ledger(case), particles_csv(case)
+
+
 def ledger(case):
     path = os.path.join(case, "postProcessing", "particleLedger", "ledger.csv")
     d = np.genfromtxt(path, delimiter=",", names=True)

@@ -59,12 +59,7 @@ def main():
     test = f"coupling.thesis_particle.{a.model}" + (f".np{a.np}" if a.np > 1 else "")
     work = tempfile.mkdtemp(prefix="meltdem-thesis-particle-")
     case = os.path.join(work, "case")
-    build(case, a.model)
-    if a.np > 1:
-        cc.decompose(case, a.np)
-    cc.run_solver(case, a.np)
-    d = cc.ledger(case)
-    p = cc.particles_csv(case)
+    d, p = cc.build_and_run(case, lambda c: build(c, a.model), a.np)
     ok = cc.check_balances(test, d, momentum=1e-7)
     melted = np.sum(p["mass_melted"])
     heat = np.sum(p["heat_absorbed"])
