@@ -306,12 +306,6 @@ bool meshRefinement::update
     const HashTable<scalarField>& ranges
 )
 {
-    if (!due())
-    {
-        idle();
-        return false;
-    }
-
     const auto& refiner = refCast<const dynamicRefineFvMesh>(mesh_);
     const labelList level(requestedLevel(s));
     const labelList& cellLevel = refiner.meshCutter().cellLevel();
