@@ -18,21 +18,22 @@ cellContentRemap::cellContentRemap(const fvMesh& mesh)
 
 void cellContentRemap::hold(const word& name, const scalarField& perVolume)
 {
-    content_.set(name, scalarField(perVolume*mesh().V().field()));
+    perVolume_.set(name, perVolume);
+    volume_ = mesh().V().field();
     lost_.set(name, 0);
 }
 
 
 tmp<scalarField> cellContentRemap::release(const word& name)
 {
-    auto iter = content_.find(name);
+    auto iter = perVolume_.find(name);
     if (!iter.found())
     {
         FatalErrorInFunction
             << "no content '" << name << "' held" << abort(FatalError);
     }
-    tmp<scalarField> perVolume(new scalarField(iter.val()/mesh().V().field()));
-    content_.erase(iter);
+    tmp<scalarField> perVolume(new scalarField(std::move(iter.val())));
+    perVolume_.erase(iter);
     return perVolume;
 }
 
@@ -71,28 +72,49 @@ scalar cellContentRemap::lost(const word& name) const
 
 tmp<scalarField> cellContentRemap::remap
 (
-    const scalarField& oldContent,
+    const scalarField& oldPerVolume,
+    const scalarField& oldVolume,
     const labelList& cellMap,
     const labelList& reverseCellMap,
     const scalarField& newVolume,
     scalar& lost
 )
 {
-    const label nOld = oldContent.size();
+    const label nOld = oldPerVolume.size();
     // volume of the new cells that each old cell is split into
     scalarField childVolume(nOld, 0);
+    labelList nChildren(nOld, 0);
     forAll(cellMap, celli)
     {
-        if (cellMap[celli] >= 0) childVolume[cellMap[celli]] += newVolume[celli];
+        if (cellMap[celli] >= 0)
+        {
+            childVolume[cellMap[celli]] += newVolume[celli];
+            ++nChildren[cellMap[celli]];
+        }
+    }
+    boolList takesMerged(cellMap.size(), false);
+    forAll(reverseCellMap, oldi)
+    {
+        if (reverseCellMap[oldi] < -1) takesMerged[-reverseCellMap[oldi] - 2] = true;
     }
     tmp<scalarField> tnew(new scalarField(cellMap.size(), 0));
-    scalarField& content = tnew.ref();
+    scalarField& perVolume = tnew.ref();
     forAll(cellMap, celli)
     {
         const label parent = cellMap[celli];
-        if (parent >= 0)
+        if (parent < 0)
         {
-            content[celli] += oldContent[parent]*(newVolume[celli]/childVolume[parent]);
+            continue;
+        }
+        if (nChildren[parent] == 1 && !takesMerged[celli])
+        {
+            // the same cell renumbered (its volume may differ in the last bit
+            // when the mesh recomputes it): its value as it was
+            perVolume[celli] = oldPerVolume[parent];
+        }
+        else
+        {
+            perVolume[celli] = oldPerVolume[parent]*oldVolume[parent]/childVolume[parent];
         }
     }
     // cells merged into a new cell, and cells no new cell took
@@ -101,11 +123,11 @@ tmp<scalarField> cellContentRemap::remap
         const label to = reverseCellMap[oldi];
         if (to < -1)
         {
-            content[-to - 2] += oldContent[oldi];
+            perVolume[-to - 2] += oldPerVolume[oldi]*oldVolume[oldi]/newVolume[-to - 2];
         }
         else if (to == -1 && childVolume[oldi] == 0)
         {
-            lost += oldContent[oldi];
+            lost += oldPerVolume[oldi]*oldVolume[oldi];
         }
     }
     return tnew;
@@ -150,13 +172,14 @@ void cellContentRemap::updateMesh(const mapPolyMesh& map)
         remapRange(iter.val(), highest_[iter.key()], map.cellMap(), map.reverseCellMap());
     }
     const scalarField& V = mesh().V().field();
-    forAllIters(content_, iter)
+    forAllIters(perVolume_, iter)
     {
         scalar lost = 0;
-        scalarField moved(remap(iter.val(), map.cellMap(), map.reverseCellMap(), V, lost));
+        scalarField moved(remap(iter.val(), volume_, map.cellMap(), map.reverseCellMap(), V, lost));
         iter.val().transfer(moved);
         lost_.set(iter.key(), lost_.lookup(iter.key(), 0) + lost);
     }
+    volume_ = V;
 }
 
 } // End namespace meltdem

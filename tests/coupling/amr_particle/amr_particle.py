@@ -14,8 +14,7 @@ Checks (label coupling amr):
     mass error over the run (1e-12);
   - every mesh change conserves metal and enthalpy (|after/before - 1| <= 1e-12), the mesh both
     split and merged cells while the grain was in it;
-  - np 2 (--np 2): the same, and against serial the ledger totals within 1e-10 of the largest total
-    (expected to fail: the runs part at the first mesh change, see the check's reason).
+  - np 2 (--np 2): the same, and against serial the ledger totals within 1e-10 of the largest total.
 usage: amr_particle.py [--np N] [--model centre|neighbours|overlap] [--keep]
 """
 import argparse
@@ -101,10 +100,7 @@ def main():
         cc.run_solver(serial)
         s = cc.ledger(serial)
         worst = cc.ledger_totals_difference(d, s)
-        ok &= check_at_most(test, f"ledger totals np {a.np} vs serial (relative to the largest total)", worst, 1e-10,
-                            xfail="with refinement the serial and decomposed runs part from the first mesh change in "
-                                  "the gas cells beside the grain (T min 1153.04 vs 1153.24 K one step later; without "
-                                  "refinement they agree to 2e-11); each conserves to 1e-13, the cause is not found")
+        ok &= check_at_most(test, f"ledger totals np {a.np} vs serial (relative to the largest total)", worst, 1e-10)
     return fc.finish(ok, work, a.keep)
 
 
