@@ -346,8 +346,16 @@ void Foam::meltdem::particleCoupling::globalParticles
 (
     List<point>& centres,
     scalarList& radii
-) const
+)
 {
+    if (!haveLocated_)
+    {
+        // nothing located since the run began (a resumed run's first step):
+        // the particles where LAMMPS has them now, as an uninterrupted run has them
+        std::vector<mc::ExchangeRecord> now;
+        (*host_)().local_particles(now);
+        relocate(shapesOf(now));
+    }
     const std::vector<mc::ParticleShape>& all = exchange_->global_shapes();
     centres.setSize(label(all.size()));
     radii.setSize(label(all.size()));

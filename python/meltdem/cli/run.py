@@ -401,9 +401,35 @@ def run_foam(case, np_, resume, rebuilt=False):
     if resume:
         restore_start_time(case)
     if np_ > 1:
-        say("reconstructing (log.reconstructPar)")
-        tool(["reconstructPar", "-newTimes"], case, "log.reconstructPar")
+        reconstruct(case)
     return wall
+
+
+def _times(folder):
+    out = []
+    for d in os.listdir(folder) if os.path.isdir(folder) else []:
+        try:
+            out.append((float(d), d))
+        except ValueError:
+            pass
+    return [d for _, d in sorted(out)]
+
+
+def reconstruct(case):
+    """The decomposed times the case folder lacks, reconstructed; where the mesh changed (adaptive
+    refinement writes processorN/<time>/polyMesh) its mesh first, with reconstructParMesh, which also
+    writes the addressing reconstructPar needs."""
+    proc0 = os.path.join(case, "processor0")
+    new = [d for d in _times(proc0) if not os.path.isdir(os.path.join(case, d))]
+    if not new:
+        return
+    changed = [d for d in new if os.path.isdir(os.path.join(proc0, d, "polyMesh"))]
+    if changed:
+        say(f"reconstructing the refined mesh at {len(changed)} time(s) (log.reconstructParMesh)")
+        tool(["reconstructParMesh", "-mergeTol", "1e-6", "-time", ",".join(changed)], case,
+             "log.reconstructParMesh")
+    say("reconstructing (log.reconstructPar)")
+    tool(["reconstructPar", "-time", ",".join(new)], case, "log.reconstructPar")
 
 
 def _wedge(case):

@@ -14,17 +14,23 @@ Checks (label coupling amr):
     mass error over the run (1e-12);
   - every mesh change conserves metal and enthalpy (|after/before - 1| <= 1e-12), the mesh both
     split and merged cells while the grain was in it;
-  - np 2 (--np 2): the same, and against serial the ledger totals within 1e-10 of the largest total.
-usage: amr_particle.py [--np N] [--model centre|neighbours|overlap] [--keep]
+  - np 2 (--np 2): the same, and against serial the ledger totals within 1e-10 of the largest total;
+  - --resume: the run stopped at half time and resumed with `meltdem run CASE --resume` (on --np
+    ranks) against the uninterrupted run: every ledger total of every step equal, bit for bit (the
+    grains near the pool steer the first resumed mesh change as they did in the uninterrupted run).
+usage: amr_particle.py [--np N] [--model centre|neighbours|overlap] [--resume] [--keep]
 """
 import argparse
 import glob
 import os
+import re
+import subprocess
 import sys
 import tempfile
 
 import numpy as np
 
+from meltdem import paths
 from meltdem.case import coupled as cc
 from meltdem.case import foam as fc
 from meltdem.testing.report import check_at_most, check_relative, report
@@ -74,12 +80,46 @@ def remap_checks(test, case):
     return ok
 
 
+def set_control(case, **entries):
+    path = os.path.join(case, "system", "controlDict")
+    txt = open(path).read()
+    for key, val in entries.items():
+        txt = re.sub(rf"\n{key} [^;]*;", f"\n{key} {val};", txt)
+    open(path, "w").write(txt)
+
+
+def resume_check(a):
+    """Uninterrupted to T_END against stopped at T_END/2 and resumed by `meltdem run --resume`."""
+    test = "coupling.amr_particle.resume" + (f".np{a.np}" if a.np > 1 else "")
+    work = tempfile.mkdtemp(prefix="meltdem-amr-resume-")
+    whole, parts = os.path.join(work, "whole"), os.path.join(work, "parts")
+    for case, end in ((whole, T_END), (parts, T_END / 2)):
+        cc.build_and_run(case, lambda c: (build(c, a.model), set_control(c, endTime=end, writePrecision=17)),
+                         a.np)
+    set_control(parts, endTime=T_END)
+    cmd = [paths.binary("meltdem"), "run", parts, "--resume", "--no-analyse"]
+    cmd += ["--np", str(a.np)] if a.np > 1 else []
+    r = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT)
+    print(r.stdout.decode(errors="replace")[-600:])
+    ok = report(test, "meltdem run --resume exit status", r.returncode, 0, "exact", r.returncode == 0)
+    if ok:
+        w, p = cc.ledger(whole), cc.ledger(parts)
+        ok &= report(test, "ledger steps, resumed vs uninterrupted", len(p), len(w), "exact", len(p) == len(w))
+        if ok:
+            ok &= check_at_most(test, "ledger totals, resumed vs uninterrupted (relative to the largest total)",
+                                cc.ledger_totals_difference(p, w), 0.0)
+    return fc.finish(ok, work, a.keep)
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--np", type=int, default=1)
     ap.add_argument("--model", default="overlap")
+    ap.add_argument("--resume", action="store_true")
     ap.add_argument("--keep", action="store_true")
     a = ap.parse_args()
+    if a.resume:
+        return resume_check(a)
     test = f"coupling.amr_particle.{a.model}" + (f".np{a.np}" if a.np > 1 else "")
     work = tempfile.mkdtemp(prefix="meltdem-amr-particle-")
     case = os.path.join(work, "case")

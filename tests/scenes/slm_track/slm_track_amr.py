@@ -7,7 +7,7 @@ a 30 um base mesh refined to 15 um by the scene's refinement{} (--refine 1: melt
 within 300 K of melting, the beam's footprint and its path ahead, grains near either). Checks:
 - the refined run's absorbed laser power = eta P every step (1e-9) and its ledger balances;
 - track width and depth on the refined mesh vs the uniform one (the issue's 2 %; both expected to
-  fail: last-bit changes move the refined run by up to 2.1 % in width);
+  fail: last-bit changes move the refined run by up to 2.4 % in width);
 - every mesh change conserves metal and enthalpy (1e-12);
 and reports both runs' cells and solver CPU (bench/amr.md has the cost; on this 0.3 mm floor the
 refined region holds most of the cells).
@@ -48,9 +48,9 @@ def main():
     ok &= cc.check_balances(TEST, cc.ledger(case))
     ok &= check_relative(TEST, "track width, refined 30 -> 15 um vs uniform 15 um [m]", s["track_width_m"],
                          u["track_width_m"], 0.02,
-                         xfail="the refined run's width moved by -0.6 to +2.1 % against the uniform run across "
+                         xfail="the refined run's width moved by -0.6 to +2.4 % against the uniform run across "
                                "builds that differ in the last bit only (the coupled bed is chaotic at that level, "
-                               "bench/amr.md); the 2 % held in 3 of 4")
+                               "bench/amr.md); the 2 % held in 3 of 5")
     ok &= check_relative(TEST, "track depth, refined 30 -> 15 um vs uniform 15 um [m]", s["track_depth_m"],
                          u["track_depth_m"], 0.02,
                          xfail="the 18 um deep track (1.2 cells) comes out 0.4-0.5 um deeper on the refined mesh "
