@@ -9,6 +9,9 @@ against the uniform run and the CPU ratio uniform/AMR. Writes amr.md and amr.png
 script.
 
     /usr/bin/python3 bench/amr.py [--pairs 15e-6:1,10e-6:1] [--fluid-dt 1e-6] [--work DIR] [--out DIR]
+                                  [--variant ci|full] [--track METRES]
+
+--variant full (0.9 x 0.9 mm floor) with a shorter --track writes amr_full.md/png instead.
 
 Run by hand (minutes per run).
 """
@@ -34,9 +37,9 @@ def most_cells(case, meta):
     return int(max(np.max(r["cellsAfter"]), np.prod(meta["n_cells"])))
 
 
-def one(work, bed, h, levels, fluid_dt):
+def one(work, bed, h, levels, fluid_dt, variant="ci", track=None):
     case = os.path.join(work, f"h{h * 1e6:g}um_L{levels}")
-    scene.build(case, "ci", cell=h, bed=bed, fluid_dt=fluid_dt, refine=levels)
+    scene.build(case, variant, cell=h, bed=bed, fluid_dt=fluid_dt, refine=levels, track=track)
     scene.run(case)
     s = scene.analyse(case)
     meta = json.load(open(os.path.join(case, "scene.json")))
@@ -45,9 +48,14 @@ def one(work, bed, h, levels, fluid_dt):
                 wall_s=s["wall_s"])
 
 
-def write(rows, fluid_dt, out):
-    lines = ["# Adaptive refinement vs the uniform finest mesh (slm-track CI)", "",
-             f"`bench/amr.py`: {__doc__.split(chr(10) + chr(10))[0].split(': ', 1)[1]} Fluid step "
+def write(rows, fluid_dt, out, variant="ci", track=None):
+    v = scene.VARIANTS[variant]
+    what = __doc__.split(chr(10) + chr(10))[0].split(': ', 1)[1]
+    if variant != "ci":
+        what += (f" Here the {variant} variant: {v['lx'] * 1e3:g} x {v['lz'] * 1e3:g} mm floor, "
+                 f"{(track or v['x1'] - v['x0']) * 1e3:g} mm of track.")
+    lines = [f"# Adaptive refinement vs the uniform finest mesh (slm-track {variant})", "",
+             f"`bench/amr.py`: {what} Fluid step "
              f"{fluid_dt * 1e6:g} us for every run; one rank; CPU = the solver's ExecutionTime.", "",
              "| finest cell [um] | mesh | base cell [um] | most cells | width [um] | depth [um] | CPU [s] | "
              "width vs uniform | depth vs uniform | CPU uniform / AMR |", "|---|---|---|---|---|---|---|---|---|---|"]
@@ -59,7 +67,8 @@ def write(rows, fluid_dt, out):
                          f"{r['width_um']:.1f} | {r['depth_um']:.1f} | {r['cpu_s']:.0f} | "
                          f"{(r['width_um'] / u['width_um'] - 1) * 100:+.1f} % | "
                          f"{(r['depth_um'] / u['depth_um'] - 1) * 100:+.1f} % | {u['cpu_s'] / r['cpu_s']:.2f} |")
-    open(os.path.join(out, "amr.md"), "w").write("\n".join(lines) + "\n")
+    name = "amr" if variant == "ci" else f"amr_{variant}"
+    open(os.path.join(out, name + ".md"), "w").write("\n".join(lines) + "\n")
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -77,7 +86,7 @@ def write(rows, fluid_dt, out):
     ax[1].set_ylabel("solver CPU [s]")
     ax[0].legend()
     fig.tight_layout()
-    fig.savefig(os.path.join(out, "amr.png"), dpi=110)
+    fig.savefig(os.path.join(out, name + ".png"), dpi=110)
 
 
 def main():
@@ -86,18 +95,20 @@ def main():
     ap.add_argument("--fluid-dt", type=float, default=1e-6)
     ap.add_argument("--work", default="/tmp/meltdem-amr")
     ap.add_argument("--out", default=HERE)
+    ap.add_argument("--variant", default="ci", choices=sorted(scene.VARIANTS))
+    ap.add_argument("--track", type=float, default=None, help="track length [m] (default: the variant's)")
     a = ap.parse_args()
     os.makedirs(a.work, exist_ok=True)
     bed = os.path.join(a.work, "bed", "bed.dump")
     if not os.path.exists(bed):
-        scene.pour_bed(a.work, dict(scene.VARIANTS["ci"], np=1))
+        scene.pour_bed(a.work, dict(scene.VARIANTS[a.variant], np=1))
     rows = []
     for pair in a.pairs.split(","):
         h, levels = float(pair.split(":")[0]), int(pair.split(":")[1])
-        rows.append(one(a.work, bed, h, 0, a.fluid_dt))
-        rows.append(one(a.work, bed, h, levels, a.fluid_dt))
+        rows.append(one(a.work, bed, h, 0, a.fluid_dt, a.variant, a.track))
+        rows.append(one(a.work, bed, h, levels, a.fluid_dt, a.variant, a.track))
         json.dump(rows, open(os.path.join(a.work, "results.json"), "w"), indent=1)
-    write(rows, a.fluid_dt, a.out)
+    write(rows, a.fluid_dt, a.out, a.variant, a.track)
     return 0
 
 

@@ -24,17 +24,25 @@ bool BoxCellLattice::build(const std::vector<Eigen::Vector3d> &lo, const std::ve
   const double total = double(n_[0]) * n_[1] * n_[2];
   if (total > max_slots_per_cell * double(ncells)) return false;
   std::vector<long> slots(std::size_t(total), -1);
+  spanning_ = false;
   for (std::size_t c = 0; c < ncells; ++c) {
-    int idx[3];
+    // the slots [first, end) the cell covers on each axis: one on a uniform or graded mesh,
+    // several for a coarse cell beside refined ones
+    int first[3], end[3];
     for (int a = 0; a < 3; ++a) {
       const std::vector<double> &p = planes_[a];
-      const auto it = std::lower_bound(p.begin(), p.end(), lo[c][a]);
-      idx[a] = int(it - p.begin());
-      if (idx[a] >= n_[a] || p[std::size_t(idx[a]) + 1] != hi[c][a]) return false;  // spans several
+      first[a] = int(std::lower_bound(p.begin(), p.end(), lo[c][a]) - p.begin());
+      end[a] = int(std::lower_bound(p.begin(), p.end(), hi[c][a]) - p.begin());
+      if (end[a] <= first[a]) return false;  // an empty or inverted box
+      spanning_ = spanning_ || end[a] - first[a] > 1;
     }
-    long &s = slots[(std::size_t(idx[2]) * n_[1] + std::size_t(idx[1])) * n_[0] + idx[0]];
-    if (s >= 0) return false;  // two cells in one slot
-    s = long(c);
+    for (int k = first[2]; k < end[2]; ++k)
+      for (int j = first[1]; j < end[1]; ++j)
+        for (int i = first[0]; i < end[0]; ++i) {
+          long &s = slots[(std::size_t(k) * n_[1] + std::size_t(j)) * n_[0] + i];
+          if (s >= 0) return false;  // two cells in one slot: boxes that overlap
+          s = long(c);
+        }
   }
   slots_.swap(slots);
   return true;
@@ -80,9 +88,11 @@ void BoxCellLattice::cells_in_box(const Eigen::Vector3d &lo, const Eigen::Vector
         const long c = slot(i, j, k);
         if (c >= 0) cells.push_back(c);
       }
-  // (a blockMesh numbers its cells in this order already)
+  // (a blockMesh numbers its cells in this order already; a cell spanning several slots
+  // came once per slot)
   if (!std::is_sorted(cells.begin() + std::ptrdiff_t(start), cells.end()))
     std::sort(cells.begin() + std::ptrdiff_t(start), cells.end());
+  if (spanning_) cells.erase(std::unique(cells.begin() + std::ptrdiff_t(start), cells.end()), cells.end());
 }
 
 }  // namespace meltdem::coupling

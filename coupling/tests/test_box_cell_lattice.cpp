@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <functional>
 #include <random>
 
 using meltdem::coupling::BoxCellLattice;
@@ -92,9 +93,11 @@ TEST(BoxCellLattice, RefusesWhatIsNoLattice)
   Boxes b = graded_lattice(4, 3, 2, 0, 3u);
   BoxCellLattice lattice;
   ASSERT_TRUE(lattice.build(b.lo, b.hi));
-  // a cell spanning two intervals (a coarse cell beside refined ones)
+  // a box that overlaps another by half its width
   Boxes merged = b;
-  merged.hi[0] = merged.hi[0] + V(1e-5, 0, 0);
+  const V half(0.5 * (b.hi[0][0] - b.lo[0][0]), 0, 0);
+  merged.lo.push_back(b.lo[0] + half);
+  merged.hi.push_back(b.hi[0] + half);
   EXPECT_FALSE(lattice.build(merged.lo, merged.hi));
   EXPECT_TRUE(lattice.empty());
   EXPECT_EQ(lattice.find_cell(b.lo[1]), -1);
@@ -121,4 +124,54 @@ TEST(BoxCellLattice, OutsideAndNonFinite)
   EXPECT_TRUE(cells.empty());
   lattice.cells_in_box(V(-1, -1, -1), V(1, 1, 1), cells);
   EXPECT_EQ(cells.size(), 27u);
+}
+
+TEST(BoxCellLattice, MatchesBruteForceOnRefinedMesh)
+{
+  // a 4 x 3 x 3 graded block whose cells are split into 8 (hexRef8's midpoints) where a random
+  // draw says so, one in five of those split again: cells of three sizes side by side, the
+  // coarse ones spanning 2 or 4 slots per axis
+  const Boxes base = graded_lattice(4, 3, 3, 0, 21u);
+  std::mt19937 rng(8);
+  std::uniform_int_distribution<int> pick(0, 99);
+  Boxes b;
+  std::vector<double> planes[3];
+  auto add = [&](const V &lo, const V &hi) {
+    b.lo.push_back(lo), b.hi.push_back(hi);
+    for (int a = 0; a < 3; ++a) planes[a].push_back(lo[a]), planes[a].push_back(hi[a]);
+  };
+  std::function<void(const V &, const V &, int)> split = [&](const V &lo, const V &hi, int level) {
+    if (level == 2 || pick(rng) >= (level == 0 ? 50 : 20)) return add(lo, hi);
+    const V mid = 0.5 * (lo + hi);
+    for (int o = 0; o < 8; ++o) {
+      V l, h;
+      for (int a = 0; a < 3; ++a) {
+        const bool up = (o >> a) & 1;
+        l[a] = up ? mid[a] : lo[a], h[a] = up ? hi[a] : mid[a];
+      }
+      split(l, h, level + 1);
+    }
+  };
+  for (std::size_t c = 0; c < base.lo.size(); ++c) split(base.lo[c], base.hi[c], 0);
+  for (auto &p : planes) std::sort(p.begin(), p.end()), p.erase(std::unique(p.begin(), p.end()), p.end());
+  BoxCellLattice lattice;
+  ASSERT_TRUE(lattice.build(b.lo, b.hi, 64.0));
+  std::uniform_real_distribution<double> u(-0.1, 1.1);
+  for (int trial = 0; trial < 4000; ++trial) {
+    V p;
+    for (int a = 0; a < 3; ++a) {
+      const auto &q = planes[a];
+      p[a] = pick(rng) < 33 ? q[std::size_t(pick(rng)) % q.size()] : q.front() + u(rng) * (q.back() - q.front());
+    }
+    long expected = -1;
+    for (std::size_t c = 0; c < b.lo.size(); ++c)
+      if (contains(b.lo[c], b.hi[c], p) && expected < 0) expected = long(c);
+    ASSERT_EQ(lattice.find_cell(p), expected) << "trial " << trial;
+    const V r(2e-5 * (u(rng) + 0.1), 1e-5 * (u(rng) + 0.1), 3e-6 * (u(rng) + 0.1));
+    std::vector<long> want, got;
+    for (std::size_t c = 0; c < b.lo.size(); ++c)
+      if (overlaps(b.lo[c], b.hi[c], p - r, p + r)) want.push_back(long(c));
+    lattice.cells_in_box(p - r, p + r, got);
+    ASSERT_EQ(got, want) << "trial " << trial;
+  }
 }

@@ -43,7 +43,9 @@ void Foam::meltdem::foamDistributionMesh::update()
             lo[celli] = Eigen::Vector3d(a.x(), a.y(), a.z());
             hi[celli] = Eigen::Vector3d(b.x(), b.y(), b.z());
         }
-        lattice_.build(lo, hi);
+        // up to 64 slots per cell: a refined mesh's coarse cells span 2^L slots per axis
+        // beside cells refined L levels (8 bytes a slot)
+        lattice_.build(lo, hi, 64.0);
     }
     if (!lattice_.empty())
     {

@@ -1,8 +1,7 @@
 #include "particlesRefinement.H"
 #include "laserHeatSource.H"
 #include "addToRunTimeSelectionTable.H"
-#include "indexedOctree.H"
-#include "treeDataCell.H"
+#include "cellBoxTree.H"
 
 namespace Foam
 {
@@ -60,7 +59,7 @@ void particlesRefinement::mark(const state& s, bitSet& cells) const
     const scalarField& a = mesh_.lookupObject<volScalarField>(s.alphaName).primitiveField();
     const scalarField* fl =
         nearPool_ ? &mesh_.lookupObject<volScalarField>("liquidFraction").primitiveField() : nullptr;
-    const indexedOctree<treeDataCell>& tree = mesh_.cellTree();
+    const indexedOctree<treeDataCell>& tree = cellBoxTree::New(mesh_).tree();
 
     // whether each grain is near the pool on this rank, then on any rank
     const label n = s.particleCentres.size();

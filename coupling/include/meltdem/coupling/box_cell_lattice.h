@@ -1,7 +1,8 @@
 #pragma once
 // Cell search on meshes whose cells are axis-aligned boxes on a tensor-product lattice (the
-// blockMesh hexahedra of the scenes, graded or not, a rank's part of one): a point or a box is
-// located by binary search in the three lists of coordinate planes instead of a tree walk.
+// blockMesh hexahedra of the scenes, graded or not, refined by hexRef8 or not, a rank's part of
+// one): a point or a box is located by binary search in the three lists of coordinate planes
+// instead of a tree walk.
 #include <Eigen/Core>
 
 #include <vector>
@@ -10,10 +11,11 @@ namespace meltdem::coupling {
 
 class BoxCellLattice {
  public:
-  // Cells by their bounding boxes (lo, hi). True when every cell spans exactly one interval
-  // between consecutive planes on each axis, no two cells share a slot, and the lattice has at
-  // most max_slots_per_cell slots per cell (the rest are holes: a rank's irregular part of a
-  // mesh). False otherwise, and the lattice stays empty.
+  // Cells by their bounding boxes (lo, hi); the planes are all the cells' coordinates, and a
+  // cell covers the slots between its own planes (one per axis on a uniform or graded mesh,
+  // several for a coarse cell beside refined ones). True when no two cells share a slot and the
+  // lattice has at most max_slots_per_cell slots per cell (the rest are holes: a rank's irregular
+  // part of a mesh). False otherwise, and the lattice stays empty.
   bool build(const std::vector<Eigen::Vector3d> &lo, const std::vector<Eigen::Vector3d> &hi,
              double max_slots_per_cell = 8.0);
 
@@ -31,6 +33,7 @@ class BoxCellLattice {
   std::vector<double> planes_[3];  // sorted coordinate planes per axis; n_[a] = intervals
   int n_[3] = {0, 0, 0};
   std::vector<long> slots_;  // cell of each lattice slot, -1 for a hole
+  bool spanning_ = false;    // some cell covers more than one slot
 };
 
 }  // namespace meltdem::coupling
