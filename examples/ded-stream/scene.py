@@ -3,7 +3,7 @@
 particles fly at 10 m/s along a 45 degree axis into a laser melt pool on a 20 um substrate.
 Coupled meltdemFoam (substrate, melt pool, gas) + LAMMPS (the particles).
 
-    scene.py build CASE [--ci | --full] [--switch-off] [--dx DX] [--end T] ...
+    scene.py build CASE [--ci | --full] [--switch-off] [--dx DX] [--end T] [--refine L] ...
     scene.py run CASE [--np N]
     scene.py analyse CASE
     scene.py all CASE [--ci | --full] [--switch-off] [--np N]
@@ -89,16 +89,35 @@ def centres(n, dx):
     return X.ravel(), Y.ravel(), Z.ravel()
 
 
+def refinement_dict(levels, interval=1):
+    """refinement{} of a --refine run: the finest cells in the pool and the metal about to melt,
+    under the beam and around every grain; coarse cells in the gas and the deep substrate."""
+    return f"""refinement
+{{
+    maxLevel        {levels};
+    refineInterval  {interval};
+    nBufferLayers   1;
+    criteria
+    {{
+        meltPool {{ level {levels}; belowSolidus 300; }}
+        laser    {{ level {levels}; radii 1.2; }}
+        grains   {{ type particles; level {levels}; diameters 1; near (anywhere); }}
+    }}
+}}
+"""
+
+
 def build(a):
     case = a.case
     os.makedirs(case, exist_ok=True)
-    n = mesh_counts(a.dx)
+    h = a.dx * 2 ** a.refine           # the base mesh (refined to dx where needed)
+    n = mesh_counts(h)
     # closed walls as in Fuchs2022, except the top: open to the atmosphere, so that the gas the
     # molten powder displaces (the coupling's volume source) can leave a box of incompressible
     # phases
     cc.box_mesh(case, (0, 0, 0), (LX, LY, LZ), n,
                 {"walls": ("wall", ["xmin", "xmax", "ymin", "ymax", "zmin"]), "top": ("patch", ["zmax"])})
-    X, Y, Z = centres(n, a.dx)
+    X, Y, Z = centres(n, h)
     alpha = np.where(Z < SUB, 1.0, 0.0)
     cc.uniform_field(case, "alpha.metal", "[0 0 0 0 0 0 0]", alpha,
                      {"walls": "type zeroGradient;",
@@ -121,7 +140,7 @@ def build(a):
     # (not far below max_dt: the coupling rounds the fluid step down to whole DEM steps, so a
     # first step of a few DEM steps could only grow by the 1.2 factor rounded down, i.e. never)
     fc.control_dict(case, "meltdemFoam", a.end, max_dt / 2, a.write, max_co=a.max_co, max_alpha_co=a.max_co,
-                    max_dt=max_dt)
+                    max_dt=max_dt, extra=fc.CELL_GEOMETRY_FUNCTIONS if a.refine else "")
     fc.fv_schemes(case)
     fc.fv_solution(case, n_correctors=3)
     cc.exact_solves(case, T=1e-14, relaxation=True)   # the metal mass and enthalpy balances
@@ -156,7 +175,7 @@ particles
     distribution    {a.distribution};
     demStepsPerFluidStep auto;
 }}
-"""
+{refinement_dict(a.refine, a.refine_interval) if a.refine else ""}"""
     physics = {"energy": "on", "darcy": "on", "marangoni": "on", "laser": "on", "particles": "on",
                "evaporation": "on" if a.evaporation else "off", "recoil": "on" if a.recoil else "off"}
     fc.meltdem_properties(case, physics=physics, surface={"nSmooth": a.nsmooth}, extra=extra)
@@ -190,7 +209,8 @@ thermo 1000
 """)  # noqa: E501  (a long line of the LAMMPS input written verbatim)
     with open(os.path.join(case, "scene.json"), "w") as f:
         json.dump(dict(vars(a), n=n, scene="ded-stream"), f, indent=1)
-    print(f"built {case}: {n[0]} x {n[1]} x {n[2]} cells of {a.dx * 1e6:g} um "
+    print(f"built {case}: {n[0]} x {n[1]} x {n[2]} cells of {h * 1e6:g} um"
+          f"{f' refined to {a.dx * 1e6:g} um' if a.refine else ''} "
           f"({D_P / a.dx:.2f} cells per particle diameter), to t = {a.end * 1e3:g} ms, "
           f"laser {'off at 0.012 ms' if a.switch_off else 'on throughout'}")
 
@@ -226,16 +246,13 @@ def results_dirs(case):
 def pool_stats(case, dx, n):
     """Per written time: (t, pool diameter [m] = 2 sqrt(A/pi) of the area A of the columns with a
     molten metal cell (alpha >= 0.5, T >= Tm), depth of the molten metal below the substrate top
-    [m], peak T, molten metal volume [m3])."""
+    [m], peak T, molten metal volume [m3]). n: cells of dx (the finest cells of a refined run, whose
+    fields are mapped onto them)."""
     X, Y, Z = centres(n, dx)
     rows = []
     for d in results_dirs(case):
-        T = fc.read_internal(os.path.join(case, d, "T"))
-        a = fc.read_internal(os.path.join(case, d, "alpha.metal"))
-        if T.ndim == 0:
-            T = np.full(X.size, float(T))
-        if a.ndim == 0:
-            a = np.full(X.size, float(a))
+        T = fc.lattice_field(case, d, "T", n, dx).ravel()
+        a = fc.lattice_field(case, d, "alpha.metal", n, dx).ravel()
         molten = (a >= 0.5) & (T >= T_MELT)
         cols = molten.reshape(n[2], n[1] * n[0]).any(axis=0)
         area = cols.sum() * dx * dx
@@ -304,7 +321,8 @@ def particle_events(tracks, t_end):
 
 def analyse(case):
     a = json.load(open(os.path.join(case, "scene.json")))
-    dx, n = a["dx"], tuple(a["n"])
+    dx, f = a["dx"], 2 ** a.get("refine", 0)
+    n = tuple(k * f for k in a["n"])         # the finest cells
     pool = pool_stats(case, dx, n)
     tracks = read_tracks(case)
     t, dt, cont, part = laser_budget(case)
@@ -404,6 +422,10 @@ def main(argv=None):
     ap.add_argument("--no-recoil", dest="recoil", action="store_false")
     ap.add_argument("--no-evaporation", dest="evaporation", action="store_false")
     ap.add_argument("--np", type=int, default=1)
+    ap.add_argument("--refine", type=int, default=0, metavar="L",
+                    help="adaptive refinement: base cells 2^L x --dx, refined to --dx in the pool, under the beam "
+                    "and around the grains (refinement{})")
+    ap.add_argument("--refine-interval", type=int, default=1, metavar="N", help="fluid steps between mesh updates")
     a = ap.parse_args(argv)
     v = VARIANTS[a.variant or "ci"]
     a.dx = a.dx or v["dx"]
@@ -415,7 +437,10 @@ def main(argv=None):
     if a.action in ("run", "all"):
         run(a.case, a.np)
         if a.np > 1:
-            fc.run(["reconstructPar"], a.case, "log.reconstructPar")
+            fc.run(["reconstructParMesh", "-mergeTol", "1e-6"] if a.refine else ["reconstructPar"], a.case,
+                   "log.reconstructParMesh" if a.refine else "log.reconstructPar")
+            if a.refine:
+                fc.run(["reconstructPar"], a.case, "log.reconstructPar")
     if a.action in ("analyse", "all"):
         analyse(a.case)
 

@@ -243,12 +243,7 @@ def build(case, variant, cell=None, bed=None, track=None, distribution="overlap"
                       "atmosphere": "type totalPressure; p0 uniform 0; value uniform 0;"})
     fc.transport(case, RHO, MU_MELT / RHO, GAS["rho"], gas_mu / GAS["rho"], SIGMA0)
     fc.gravity(case, (0.0, -G, 0.0))
-    cell_fields = "" if not refine else """functions
-{
-    centres { type writeCellCentres; libs (fieldFunctionObjects); writeControl writeTime; }
-    volumes { type writeCellVolumes; libs (fieldFunctionObjects); writeControl writeTime; }
-}
-"""
+    cell_fields = fc.CELL_GEOMETRY_FUNCTIONS if refine else ""
     fc.control_dict(case, "meltdemFoam", t_end, dt_cap / 4, v["write"], max_co=0.3, max_alpha_co=0.3,
                     max_dt=dt_cap, extra=cell_fields)
     fc.fv_schemes(case)
@@ -317,28 +312,11 @@ def run(case, np_=1):
 
 
 def lattice_field(case, time, name, meta):
-    """A written field on the lattice of the finest cells, (nz, ny, nx): as written on a uniform
-    mesh; on a refined one (--refine) each cell's value fills the finest cells it covers (its
-    centre and volume from the C and V the run writes)."""
+    """A written field on the lattice of the finest cells, (nz, ny, nx) (fc.lattice_field: on a
+    refined mesh (--refine) each cell's value fills the finest cells it covers)."""
     f = 2 ** meta.get("refine", 0)
-    nx, ny, nz = (k * f for k in meta["n_cells"])
-    values = np.asarray(fc.read_internal(os.path.join(case, time, name)), dtype=float)
-    if f == 1:
-        return (values * np.ones(nx * ny * nz)).reshape(nz, ny, nx)
-    C = np.asarray(fc.read_internal(os.path.join(case, time, "C")), dtype=float).reshape(-1, 3)
-    V = np.asarray(fc.read_internal(os.path.join(case, time, "V")), dtype=float) * np.ones(len(C))
-    values = values * np.ones(len(C))
-    h = meta["cell"]
-    out = np.full((nz, ny, nx), np.nan)
-    span = np.rint(np.cbrt(V) / h).astype(int)            # finest cells per edge of each cell
-    lo = np.rint((C - 0.5 * span[:, None] * h - np.array([0.0, -meta["sub"], 0.0])) / h).astype(int)
-    for k in np.unique(span):
-        sel = np.nonzero(span == k)[0]
-        for dz in range(k):
-            for dy in range(k):
-                for dx in range(k):
-                    out[lo[sel, 2] + dz, lo[sel, 1] + dy, lo[sel, 0] + dx] = values[sel]
-    return out
+    return fc.lattice_field(case, time, name, tuple(k * f for k in meta["n_cells"]), meta["cell"],
+                            (0.0, -meta["sub"], 0.0))
 
 
 def track_geometry(case, meta):

@@ -352,3 +352,51 @@ def finish(ok, work, keep=False, shown=None):
     else:
         print("case(s) kept in", shown or work)
     return 0 if ok else 1
+
+
+CELL_GEOMETRY_FUNCTIONS = """functions
+{
+    centres { type writeCellCentres; libs (fieldFunctionObjects); writeControl writeTime; }
+    volumes { type writeCellVolumes; libs (fieldFunctionObjects); writeControl writeTime; }
+}
+"""
+"""controlDict functions of a refining run: each write time's cell centres C and volumes V, for
+lattice_field."""
+
+
+def lattice_field(case, time, name, n_fine, h, origin=(0.0, 0.0, 0.0)):
+    """A written field on the lattice of the finest cells (n_fine = (nx, ny, nz) cells of h from
+    origin), as an (nz, ny, nx) array: as written on a uniform mesh; on a refined one (the time has
+    the C and V of CELL_GEOMETRY_FUNCTIONS) each cell's value fills the finest cells it covers."""
+    import numpy as np
+    nx, ny, nz = n_fine
+    values = np.asarray(read_internal(os.path.join(case, time, name)), dtype=float)
+    if not os.path.exists(os.path.join(case, time, "C")):
+        return (values * np.ones(nx * ny * nz)).reshape(nz, ny, nx)
+    C = np.asarray(read_internal(os.path.join(case, time, "C")), dtype=float).reshape(-1, 3)
+    V = np.asarray(read_internal(os.path.join(case, time, "V")), dtype=float) * np.ones(len(C))
+    values = values * np.ones(len(C))
+    out = np.full((nz, ny, nx), np.nan)
+    span = np.rint(np.cbrt(V) / h).astype(int)            # finest cells per edge of each cell
+    lo = np.rint((C - 0.5 * span[:, None] * h - np.asarray(origin)) / h).astype(int)
+    for k in np.unique(span):
+        sel = np.nonzero(span == k)[0]
+        for dz in range(k):
+            for dy in range(k):
+                for dx in range(k):
+                    out[lo[sel, 2] + dz, lo[sel, 1] + dy, lo[sel, 0] + dx] = values[sel]
+    return out
+
+
+def refinement_ledger(case):
+    """The mesh changes of a refining run (postProcessing/refinement/<start>/refinement.csv of every
+    start), one row each, and the worst |after/before - 1| of metal and enthalpy over them."""
+    import glob
+    import numpy as np
+    rows = [np.atleast_1d(np.genfromtxt(f, delimiter=",", names=True))
+            for f in sorted(glob.glob(os.path.join(case, "postProcessing", "refinement", "*", "refinement.csv")))]
+    if not rows:
+        raise FileNotFoundError(f"{case}: no postProcessing/refinement/*/refinement.csv (no mesh change booked)")
+    ref = np.concatenate(rows)
+    worst = max(float(np.max(np.abs(ref[f"{c}After"] / ref[f"{c}Before"] - 1))) for c in ("metal", "enthalpy"))
+    return ref, worst

@@ -70,11 +70,7 @@ def main():
     m = np.concatenate([np.genfromtxt(f, delimiter=",", names=True)["metalMass"] for f in bal])
     ok &= check_at_most(TEST, "resumed run: metal mass drift over both parts, max |M/M0 - 1|",
                         float(np.max(np.abs(m / m[0] - 1))), 1e-10)
-    worst = 0.0
-    for f in glob.glob(os.path.join(b, "postProcessing", "refinement", "*", "refinement.csv")):
-        ref = np.atleast_1d(np.genfromtxt(f, delimiter=",", names=True))
-        for c in ("metal", "enthalpy"):
-            worst = max(worst, float(np.max(np.abs(ref[f"{c}After"] / ref[f"{c}Before"] - 1))))
+    worst = fc.refinement_ledger(b)[1]
     ok &= check_at_most(TEST, "resumed run: metal and enthalpy across each mesh change, max |after/before - 1|",
                         worst, 1e-12)
 

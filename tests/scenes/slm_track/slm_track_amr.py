@@ -12,7 +12,6 @@ within 300 K of melting, the beam's footprint and its path ahead, grains near ei
 and reports both runs' cells and solver CPU (bench/amr.md has the cost; on this 0.3 mm floor the
 refined region holds most of the cells).
 """
-import glob
 import os
 import sys
 import tempfile
@@ -55,9 +54,7 @@ def main():
                          u["track_depth_m"], 0.02,
                          xfail="the 18 um deep track (1.2 cells) comes out 0.4-0.5 um deeper on the refined mesh "
                                "(+2.2 % at a 1 us step, +2.8 % at 1.5 us, bench/amr.md); cause not isolated")
-    ref = np.atleast_1d(np.genfromtxt(glob.glob(os.path.join(case, "postProcessing", "refinement", "*",
-                                                             "refinement.csv"))[0], delimiter=",", names=True))
-    worst = max(float(np.max(np.abs(ref[f"{c}After"] / ref[f"{c}Before"] - 1))) for c in ("metal", "enthalpy"))
+    ref, worst = fc.refinement_ledger(case)
     ok &= check_at_most(TEST, f"metal and enthalpy across each of {len(ref)} mesh changes, max |after/before - 1|",
                         worst, 1e-12)
     print(f"{TEST}: uniform {u['cells']} cells, CPU {u['cpu_s']:.0f} s; refined up to "
