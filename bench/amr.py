@@ -25,6 +25,9 @@ import numpy as np
 
 from meltdem import scene as scenes
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import amr_pairs  # noqa: E402
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 scene = scenes.module("slm-track")
 
@@ -56,37 +59,13 @@ def write(rows, fluid_dt, out, variant="ci", track=None):
                  f"{(track or v['x1'] - v['x0']) * 1e3:g} mm of track.")
     lines = [f"# Adaptive refinement vs the uniform finest mesh (slm-track {variant})", "",
              f"`bench/amr.py`: {what} Fluid step "
-             f"{fluid_dt * 1e6:g} us for every run; one rank; CPU = the solver's ExecutionTime.", "",
-             "| finest cell [um] | mesh | base cell [um] | most cells | width [um] | depth [um] | CPU [s] | "
-             "width vs uniform | depth vs uniform | CPU uniform / AMR |", "|---|---|---|---|---|---|---|---|---|---|"]
-    for u in (r for r in rows if r["levels"] == 0):
-        lines.append(f"| {u['cell_um']:g} | uniform | {u['base_um']:g} | {u['cells']} | {u['width_um']:.1f} | "
-                     f"{u['depth_um']:.1f} | {u['cpu_s']:.0f} | | | |")
-        for r in (r for r in rows if r["levels"] > 0 and r["cell_um"] == u["cell_um"]):
-            lines.append(f"| {r['cell_um']:g} | AMR, {r['levels']} level(s) | {r['base_um']:g} | {r['cells']} | "
-                         f"{r['width_um']:.1f} | {r['depth_um']:.1f} | {r['cpu_s']:.0f} | "
-                         f"{(r['width_um'] / u['width_um'] - 1) * 100:+.1f} % | "
-                         f"{(r['depth_um'] / u['depth_um'] - 1) * 100:+.1f} % | {u['cpu_s'] / r['cpu_s']:.2f} |")
+             f"{fluid_dt * 1e6:g} us for every run; one rank; CPU = the solver's ExecutionTime.", ""]
+    lines += amr_pairs.table(rows, [("base_um", "base cell [um]", "{:g}", False),
+                                    ("width_um", "width [um]", "{:.1f}", True),
+                                    ("depth_um", "depth [um]", "{:.1f}", True)])
     name = "amr" if variant == "ci" else f"amr_{variant}"
     open(os.path.join(out, name + ".md"), "w").write("\n".join(lines) + "\n")
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    fig, ax = plt.subplots(1, 2, figsize=(9, 3.6))
-    for lv, mk in ((0, "o-"), (1, "s--"), (2, "^:")):
-        sel = sorted((r for r in rows if r["levels"] == lv), key=lambda r: r["cell_um"])
-        if not sel:
-            continue
-        lab = "uniform" if lv == 0 else f"AMR {lv} level(s)"
-        ax[0].plot([r["cell_um"] for r in sel], [r["width_um"] for r in sel], mk, label=lab)
-        ax[1].plot([r["cell_um"] for r in sel], [r["cpu_s"] for r in sel], mk, label=lab)
-    ax[0].set_xlabel("finest cell [um]")
-    ax[0].set_ylabel("track width [um]")
-    ax[1].set_xlabel("finest cell [um]")
-    ax[1].set_ylabel("solver CPU [s]")
-    ax[0].legend()
-    fig.tight_layout()
-    fig.savefig(os.path.join(out, name + ".png"), dpi=110)
+    amr_pairs.plot(rows, "width_um", "track width [um]", os.path.join(out, name + ".png"))
 
 
 def main():

@@ -20,6 +20,9 @@ from meltdem import paths
 from meltdem import scene as scenes
 from meltdem.case import foam as fc
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import amr_pairs  # noqa: E402
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 SCENE = os.path.join(paths.source_dir(), "examples", "ded-stream", "scene.py")
 scene = scenes.module("ded-stream")
@@ -40,36 +43,12 @@ def one(work, h, levels):
 def write(rows, out):
     lines = ["# Adaptive refinement vs the uniform finest mesh (ded-stream)", "",
              f"`bench/amr_ded.py`: {__doc__.split(chr(10) + chr(10))[0].split(': ', 1)[1]} One rank; CPU = the "
-             "solver's ExecutionTime.", "",
-             "| finest cell [um] | mesh | most cells | pool diameter [um] | pool depth [um] | CPU [s] | "
-             "diameter vs uniform | depth vs uniform | CPU uniform / AMR |", "|---|---|---|---|---|---|---|---|---|"]
-    for u in (r for r in rows if r["levels"] == 0):
-        lines.append(f"| {u['cell_um']:g} | uniform | {u['cells']} | {u['diameter_um']:.1f} | {u['depth_um']:.1f} | "
-                     f"{u['cpu_s']:.0f} | | | |")
-        for r in (r for r in rows if r["levels"] > 0 and r["cell_um"] == u["cell_um"]):
-            lines.append(f"| {r['cell_um']:g} | AMR, {r['levels']} level(s) | {r['cells']} | {r['diameter_um']:.1f} | "
-                         f"{r['depth_um']:.1f} | {r['cpu_s']:.0f} | "
-                         f"{(r['diameter_um'] / u['diameter_um'] - 1) * 100:+.1f} % | "
-                         f"{(r['depth_um'] / u['depth_um'] - 1) * 100:+.1f} % | {u['cpu_s'] / r['cpu_s']:.2f} |")
+             "solver's ExecutionTime.", ""]
+    lines += amr_pairs.table(rows, [("diameter_um", "pool diameter [um]", "{:.1f}", True),
+                                    ("depth_um", "pool depth [um]", "{:.1f}", True)])
     open(os.path.join(out, "amr_ded.md"), "w").write("\n".join(lines) + "\n")
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    fig, ax = plt.subplots(1, 2, figsize=(9, 3.6))
-    for lv, mk in ((0, "o-"), (1, "s--"), (2, "^:")):
-        sel = sorted((r for r in rows if r["levels"] == lv), key=lambda r: r["cell_um"])
-        if sel:
-            lab = "uniform" if lv == 0 else f"AMR {lv} level(s)"
-            ax[0].plot([r["cell_um"] for r in sel], [r["diameter_um"] for r in sel], mk, label=lab)
-            ax[1].plot([r["cell_um"] for r in sel], [r["cpu_s"] for r in sel], mk, label=lab)
-    ax[0].axhline(scene.PAPER["pool_diameter_um"], color="k", lw=0.8, ls=":", label="Fuchs2022 ~130 um")
-    ax[0].set_xlabel("finest cell [um]")
-    ax[0].set_ylabel("pool diameter at 0.018 ms [um]")
-    ax[1].set_xlabel("finest cell [um]")
-    ax[1].set_ylabel("solver CPU [s]")
-    ax[0].legend()
-    fig.tight_layout()
-    fig.savefig(os.path.join(out, "amr_ded.png"), dpi=110)
+    amr_pairs.plot(rows, "diameter_um", "pool diameter at 0.018 ms [um]", os.path.join(out, "amr_ded.png"),
+                   (scene.PAPER["pool_diameter_um"], "Fuchs2022 ~130 um"))
 
 
 def main():

@@ -53,6 +53,35 @@ bool overlaps(const V &lo, const V &hi, const V &slo, const V &shi)
   return (shi.array() >= lo.array()).all() && (slo.array() <= hi.array()).all();
 }
 
+// find_cell and cells_in_box against brute force at 4000 points over the lattice (a third of the
+// coordinates exactly on a plane: faces, edges, corners, the ends) and boxes around them
+void expect_brute_force(const BoxCellLattice &lattice, const Boxes &b, unsigned seed)
+{
+  std::mt19937 rng(seed);
+  std::uniform_int_distribution<int> pick(0, 100);
+  std::uniform_real_distribution<double> u(-0.1, 1.1);
+  for (int trial = 0; trial < 4000; ++trial) {
+    V p;
+    for (int a = 0; a < 3; ++a) {
+      const auto &q = b.planes[a];
+      p[a] = pick(rng) < 33 ? q[std::size_t(pick(rng)) % q.size()] : q.front() + u(rng) * (q.back() - q.front());
+    }
+    long expected = -1;
+    for (std::size_t c = 0; c < b.lo.size(); ++c)
+      if (contains(b.lo[c], b.hi[c], p) && expected < 0) expected = long(c);
+    ASSERT_EQ(lattice.find_cell(p), expected) << "trial " << trial;
+
+    const V r(2e-5 * (u(rng) + 0.1), 1e-5 * (u(rng) + 0.1), 3e-6 * (u(rng) + 0.1));
+    const V slo = p - r, shi = p + r;
+    std::vector<long> want, got = {-5};  // appends after what the list holds
+    for (std::size_t c = 0; c < b.lo.size(); ++c)
+      if (overlaps(b.lo[c], b.hi[c], slo, shi)) want.push_back(long(c));
+    lattice.cells_in_box(slo, shi, got);
+    want.insert(want.begin(), -5);
+    ASSERT_EQ(got, want) << "trial " << trial;
+  }
+}
+
 }  // namespace
 
 TEST(BoxCellLattice, MatchesBruteForceOnGradedLatticeWithHoles)
@@ -61,30 +90,7 @@ TEST(BoxCellLattice, MatchesBruteForceOnGradedLatticeWithHoles)
     const Boxes b = graded_lattice(9, 6, 7, hole, 11u + unsigned(hole));
     BoxCellLattice lattice;
     ASSERT_TRUE(lattice.build(b.lo, b.hi));
-    std::mt19937 rng(5);
-    std::uniform_int_distribution<int> pick(0, 100);
-    std::uniform_real_distribution<double> u(-0.1, 1.1);
-    for (int trial = 0; trial < 4000; ++trial) {
-      V p;
-      for (int a = 0; a < 3; ++a) {
-        const auto &q = b.planes[a];
-        // a third of the coordinates exactly on a plane (faces, edges, corners, the ends)
-        p[a] = pick(rng) < 33 ? q[std::size_t(pick(rng)) % q.size()] : q.front() + u(rng) * (q.back() - q.front());
-      }
-      long expected = -1;
-      for (std::size_t c = 0; c < b.lo.size(); ++c)
-        if (contains(b.lo[c], b.hi[c], p) && expected < 0) expected = long(c);
-      ASSERT_EQ(lattice.find_cell(p), expected) << "trial " << trial;
-
-      const V r(2e-5 * (u(rng) + 0.1), 1e-5 * (u(rng) + 0.1), 3e-6 * (u(rng) + 0.1));
-      const V slo = p - r, shi = p + r;
-      std::vector<long> want, got = {-5};  // appends after what the list holds
-      for (std::size_t c = 0; c < b.lo.size(); ++c)
-        if (overlaps(b.lo[c], b.hi[c], slo, shi)) want.push_back(long(c));
-      lattice.cells_in_box(slo, shi, got);
-      want.insert(want.begin(), -5);
-      ASSERT_EQ(got, want) << "trial " << trial;
-    }
+    expect_brute_force(lattice, b, 5u);
   }
 }
 
@@ -135,10 +141,9 @@ TEST(BoxCellLattice, MatchesBruteForceOnRefinedMesh)
   std::mt19937 rng(8);
   std::uniform_int_distribution<int> pick(0, 99);
   Boxes b;
-  std::vector<double> planes[3];
   auto add = [&](const V &lo, const V &hi) {
     b.lo.push_back(lo), b.hi.push_back(hi);
-    for (int a = 0; a < 3; ++a) planes[a].push_back(lo[a]), planes[a].push_back(hi[a]);
+    for (int a = 0; a < 3; ++a) b.planes[a].push_back(lo[a]), b.planes[a].push_back(hi[a]);
   };
   std::function<void(const V &, const V &, int)> split = [&](const V &lo, const V &hi, int level) {
     if (level == 2 || pick(rng) >= (level == 0 ? 50 : 20)) return add(lo, hi);
@@ -153,25 +158,8 @@ TEST(BoxCellLattice, MatchesBruteForceOnRefinedMesh)
     }
   };
   for (std::size_t c = 0; c < base.lo.size(); ++c) split(base.lo[c], base.hi[c], 0);
-  for (auto &p : planes) std::sort(p.begin(), p.end()), p.erase(std::unique(p.begin(), p.end()), p.end());
+  for (auto &p : b.planes) std::sort(p.begin(), p.end()), p.erase(std::unique(p.begin(), p.end()), p.end());
   BoxCellLattice lattice;
   ASSERT_TRUE(lattice.build(b.lo, b.hi, 64.0));
-  std::uniform_real_distribution<double> u(-0.1, 1.1);
-  for (int trial = 0; trial < 4000; ++trial) {
-    V p;
-    for (int a = 0; a < 3; ++a) {
-      const auto &q = planes[a];
-      p[a] = pick(rng) < 33 ? q[std::size_t(pick(rng)) % q.size()] : q.front() + u(rng) * (q.back() - q.front());
-    }
-    long expected = -1;
-    for (std::size_t c = 0; c < b.lo.size(); ++c)
-      if (contains(b.lo[c], b.hi[c], p) && expected < 0) expected = long(c);
-    ASSERT_EQ(lattice.find_cell(p), expected) << "trial " << trial;
-    const V r(2e-5 * (u(rng) + 0.1), 1e-5 * (u(rng) + 0.1), 3e-6 * (u(rng) + 0.1));
-    std::vector<long> want, got;
-    for (std::size_t c = 0; c < b.lo.size(); ++c)
-      if (overlaps(b.lo[c], b.hi[c], p - r, p + r)) want.push_back(long(c));
-    lattice.cells_in_box(p - r, p + r, got);
-    ASSERT_EQ(got, want) << "trial " << trial;
-  }
+  expect_brute_force(lattice, b, 8u);
 }

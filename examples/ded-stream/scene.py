@@ -92,19 +92,8 @@ def centres(n, dx):
 def refinement_dict(levels, interval=1):
     """refinement{} of a --refine run: the finest cells in the pool and the metal about to melt,
     under the beam and around every grain; coarse cells in the gas and the deep substrate."""
-    return f"""refinement
-{{
-    maxLevel        {levels};
-    refineInterval  {interval};
-    nBufferLayers   1;
-    criteria
-    {{
-        meltPool {{ level {levels}; belowSolidus 300; }}
-        laser    {{ level {levels}; radii 1.2; }}
-        grains   {{ type particles; level {levels}; diameters 1; near (anywhere); }}
-    }}
-}}
-"""
+    return fc.refinement_dict(levels, interval, [("meltPool", "belowSolidus 300;"), ("laser", "radii 1.2;"),
+                                                 ("grains", "type particles; diameters 1; near (anywhere);")])
 
 
 def build(a):

@@ -178,19 +178,9 @@ def refinement_dict(levels, fluid_dt, interval=1):
     under the beam and where it will be over the next half spot of travel (at least until the next
     update), and around the grains near either; coarse cells elsewhere."""
     ahead = max(interval, int(round(0.5 * SPOT / (SPEED * fluid_dt))))
-    return f"""refinement
-{{
-    maxLevel        {levels};
-    refineInterval  {interval};
-    nBufferLayers   1;
-    criteria
-    {{
-        meltPool {{ level {levels}; belowSolidus 300; }}
-        laser    {{ level {levels}; radii 1.5; lookAhead {ahead}; }}
-        grains   {{ type particles; level {levels}; diameters 1; near (pool beam); }}
-    }}
-}}
-"""
+    return fc.refinement_dict(levels, interval, [("meltPool", "belowSolidus 300;"),
+                                                 ("laser", f"radii 1.5; lookAhead {ahead};"),
+                                                 ("grains", "type particles; diameters 1; near (pool beam);")])
 
 
 def build(case, variant, cell=None, bed=None, track=None, distribution="overlap", np_=1, gas_cp=None, fluid_dt=None,

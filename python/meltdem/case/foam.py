@@ -400,3 +400,19 @@ def refinement_ledger(case):
     ref = np.concatenate(rows)
     worst = max(float(np.max(np.abs(ref[f"{c}After"] / ref[f"{c}Before"] - 1))) for c in ("metal", "enthalpy"))
     return ref, worst
+
+
+def refinement_dict(levels, interval, criteria, buffer_layers=1):
+    """refinement{} of constant/meltdemProperties (doc/foam_refinement.rst): criteria = [(name, entries)],
+    each asking for the finest level (`level <levels>;` is added before its entries)."""
+    body = "".join(f"        {name:<8} {{ level {levels}; {entries} }}\n" for name, entries in criteria)
+    return f"""refinement
+{{
+    maxLevel        {levels};
+    refineInterval  {interval};
+    nBufferLayers   {buffer_layers};
+    criteria
+    {{
+{body}    }}
+}}
+"""
