@@ -333,8 +333,7 @@ def analyse(case):
     if os.path.exists(os.path.join(case, "wall_seconds")):
         w = open(os.path.join(case, "wall_seconds")).read().split()
         s["wall_s"], s["ranks"] = float(w[0]), int(w[1])
-    cpu = re.findall(r"ExecutionTime = (\S+) s", open(os.path.join(case, "log.meltdemFoam")).read())
-    s["solver_cpu_s"] = float(cpu[-1]) if cpu else None
+    s["solver_cpu_s"] = fc.execution_time(case)
     s["pool_time_ms"] = [float(x) for x in pool[:, 0] * 1e3]
     s["pool_diameter_um"] = [float(x) for x in pool[:, 1] * 1e6]
     s["pool_depth_um"] = [float(x) for x in pool[:, 2] * 1e6]

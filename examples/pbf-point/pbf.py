@@ -248,11 +248,22 @@ def spread_bed(bed_dir, cfg):
     return np.column_stack([a["x"], a["y"] + cfg["sub"], a["z"], 2 * a["radius"]])
 
 
+def refinement_dict(cfg, levels, interval):
+    """refinement{} of a --refine run: the finest cells in the pool and the metal about to melt, under
+    the beam and where it will be over the next half beam radius of travel, and around the grains
+    near either; coarse cells in the gas and the deep substrate."""
+    ahead = max(interval, int(round(0.5 * cfg["rw"] / (cfg["v"] * MAX_DT_EXCHANGE)))) if cfg["v"] else 0
+    return fc.refinement_dict(levels, interval, [("meltPool", "belowSolidus 300;"),
+                                                 ("laser", f"radii 1.2; lookAhead {ahead};"),
+                                                 ("grains", "type particles; diameters 1; near (pool beam);")])
+
+
 def build(case, variant, dx=None, dist=None, n=None, bed_dir=None, seed=4711, gas_cp=G["cp"], shadow=True,
-          bed_process="pour"):
+          bed_process="pour", refine=0, refine_interval=1):
     cfg = dict(VARIANTS[variant])
     cfg["gas_cp"] = gas_cp
     cfg["shadow"] = shadow
+    cfg["refine"] = refine
     if dx:
         cfg["dx"] = dx
     if dist:
@@ -269,13 +280,15 @@ def build(case, variant, dx=None, dist=None, n=None, bed_dir=None, seed=4711, ga
     else:
         bed = make_bed(bed_dir or os.path.join(case, "bed"), cfg, seed)
     cfg["bed_top"] = float(np.max(bed[:, 1] + bed[:, 3] / 2))
-    nc = ncells(cfg)
-    lo, hi = (0.0, 0.0, 0.0), (nc[0] * cfg["dx"], nc[1] * cfg["dx"], nc[2] * cfg["dx"])
+    # the base mesh of 2^refine dx (refined to dx where refinement{} asks)
+    base = dict(cfg, dx=cfg["dx"] * 2 ** refine)
+    nc = ncells(base)
+    lo, hi = (0.0, 0.0, 0.0), (nc[0] * base["dx"], nc[1] * base["dx"], nc[2] * base["dx"])
     cc.box_mesh(case, lo, hi, nc, {"walls": ("wall", ["xmin", "xmax", "ymin", "zmin", "zmax"]),
                                    "atmosphere": ("patch", ["ymax"])})
-    X, Y, Z = centres(cfg)
+    X, Y, Z = centres(base)
+    alpha = np.clip((cfg["sub"] - (Y - base["dx"] / 2)) / base["dx"], 0.0, 1.0)  # exact cell fraction
     h = cfg["dx"]
-    alpha = np.clip((cfg["sub"] - (Y - h / 2)) / h, 0.0, 1.0)   # exact cell fraction of the substrate
     walls = {"walls": "type zeroGradient;", "atmosphere": "type inletOutlet; inletValue uniform 0; value uniform 0;"}
     cc.uniform_field(case, "alpha.metal", "[0 0 0 0 0 0 0]", alpha, walls)
     cc.uniform_field(case, "T", "[0 0 0 1 0 0 0]", T0,
@@ -295,7 +308,7 @@ def build(case, variant, dx=None, dist=None, n=None, bed_dir=None, seed=4711, ga
     # below the worst cell's heat capacity over its grains' conductance, ~7e-8 s for a grain
     # on the substrate (meltdemFoam stops naming it otherwise)
     fc.control_dict(case, "meltdemFoam", cfg["t_end"], DT_DEM, cfg["write"], max_co=0.25, max_alpha_co=0.25,
-                    max_dt=min(dt_cap, MAX_DT_EXCHANGE))
+                    max_dt=min(dt_cap, MAX_DT_EXCHANGE), extra=fc.CELL_GEOMETRY_FUNCTIONS if refine else "")
     fc.fv_schemes(case)
     # metal mass conserved to round-off needs the alpha solve converged (doc/foam_meltdemFoam.rst)
     fc.fv_solution(case, n_correctors=3, alpha_tolerance=1e-14)
@@ -317,7 +330,7 @@ energyControls {{ nCorrectors 20; tolerance 1e-10; }}
     demStepsPerFluidStep auto;
     laserShadow     {'on' if cfg['shadow'] else 'off'};
 }}
-"""
+{refinement_dict(cfg, refine, refine_interval) if refine else ""}"""
     fc.meltdem_properties(case, physics={"energy": "on", "darcy": "on", "marangoni": "on", "recoil": "on",
                                          "laser": "on", "evaporation": "on", "particles": "on"},
                           surface={"nSmooth": 2}, extra=extra)
@@ -328,7 +341,8 @@ energyControls {{ nCorrectors 20; tolerance 1e-10; }}
         json.dump(cfg, f, indent=1)
     with open(os.path.join(case, "scene.json"), "w") as f:
         json.dump({"scene": "pbf-line" if variant.startswith("line") else "pbf-point"}, f)
-    print(f"{case}: {variant}, {nc[0]} x {nc[1]} x {nc[2]} cells of {h * 1e6:g} um "
+    print(f"{case}: {variant}, {nc[0]} x {nc[1]} x {nc[2]} cells of {base['dx'] * 1e6:g} um"
+          f"{f' refined to {h * 1e6:g} um' if refine else ''} "
           f"({D_LO / h:.1f}-{D_HI / h:.1f} cells per grain diameter, distribution {cfg['dist']}), "
           f"{len(bed)} grains, bed top {cfg['bed_top'] * 1e6:.1f} um")
     return cfg
@@ -359,9 +373,13 @@ def run(case, np_=1, timeout=None):
             rc = "timeout"
     wall = time.time() - t0
     if np_ > 1:
-        # the analysis reads the fields of the case folder (also after a stop or a timeout)
-        fc.run(["reconstructPar", "-fields", "(T alpha.metal U liquidFraction)"], case, "log.reconstructPar",
-               check=False)
+        # the analysis reads the fields of the case folder (also after a stop or a timeout); a
+        # refined run's meshes first (reconstructParMesh), and the cell centres and volumes
+        refined = json.load(open(os.path.join(case, "pbf.json"))).get("refine", 0) > 0
+        if refined:
+            fc.run(["reconstructParMesh", "-mergeTol", "1e-6"], case, "log.reconstructParMesh", check=False)
+        fields = "(T alpha.metal U liquidFraction" + (" C V)" if refined else ")")
+        fc.run(["reconstructPar", "-fields", fields], case, "log.reconstructPar", check=False)
     with open(os.path.join(case, "wall_seconds"), "w") as f:
         f.write(f"{wall:.1f} {np_}\n")
     print(f"{case}: ran {wall:.0f} s on {np_} rank(s)" + ("" if rc == 0 else f" (stopped: {rc})"))
@@ -429,12 +447,8 @@ def melt_pool(case, cfg):
         if not (os.path.exists(fT) and os.path.exists(fa)) or float(d) == 0.0:
             continue
         t = float(d)
-        T = fc.read_internal(fT)
-        a = fc.read_internal(fa)
-        if T.ndim == 0 or a.ndim == 0:
-            continue
-        T = T.reshape(nz, ny, nx)
-        a = a.reshape(nz, ny, nx)
+        T = fc.lattice_field(case, d, "T", (nx, ny, nz), h)
+        a = fc.lattice_field(case, d, "alpha.metal", (nx, ny, nz), h)
         molten = (a >= 0.5) & (T >= T_MELT)
         # depth: lowest molten point, interpolated to the T_MELT crossing below it
         depth = 0.0
@@ -559,8 +573,11 @@ def summary(case):
     s["grain_mass_molten_kg"] = float(np.sum(p["mass_melted"]))
     s["grain_mass_remaining_kg"] = float(led["mass_particles"][-1])
     s["grain_mass_lost_kg"] = float(led["mass_cumulative_lost"][-1])
-    s["grain_mass_balance_rel"] = ((s["grain_mass_remaining_kg"] + s["grain_mass_molten_kg"] + s["grain_mass_lost_kg"]
-                                    - m0) / m0) if m0 else 0.0
+    # the melt the continuum received (the ledger's exchange): a grain that leaves the mesh takes
+    # its last step's melt with it, booked as lost, while particles.csv counts it as molten
+    deposited = float(np.sum(led["mass_exchange"]))
+    s["grain_mass_balance_rel"] = ((s["grain_mass_remaining_kg"] + deposited + s["grain_mass_lost_kg"] - m0) / m0
+                                   if m0 else 0.0)
     cont, gl, ref, evap, t_end = laser_energy(case, cfg)
     s["laser_energy_continuum_J"], s["laser_energy_grains_J"] = cont, gl
     s["laser_energy_absorbed_J"], s["laser_energy_eta_P_t_J"] = cont + gl, ref

@@ -40,12 +40,17 @@ def main(scene=VARIANT, doc=__doc__, argv=None):
                     help="gas heat capacity [J/kg/K] (paper: 10; see pbf.py GAS_CP_STABLE)")
     ap.add_argument("--np", type=int, default=1, help="MPI ranks")
     ap.add_argument("--timeout", type=float, default=None, help="wall-clock limit of the solver [s]")
+    ap.add_argument("--refine", type=int, default=0, metavar="L",
+                    help="adaptive refinement: base cells 2^L x --dx, refined to --dx in the pool, under the beam "
+                    "and its path ahead and around the grains near them (refinement{})")
+    ap.add_argument("--refine-interval", type=int, default=1, metavar="N", help="fluid steps between mesh updates")
     args = ap.parse_args(argv)
     case = os.path.abspath(args.case)
     variant = f"{scene}-{'full' if args.full else 'ci'}"
     if args.action in ("build", "all"):
         pbf.build(case, variant, dx=args.dx, dist=args.dist, n=args.grains, bed_dir=args.bed,
-                  gas_cp=args.gas_cp, shadow=not args.no_shadow, bed_process=args.bed_process)
+                  gas_cp=args.gas_cp, shadow=not args.no_shadow, bed_process=args.bed_process,
+                  refine=args.refine, refine_interval=args.refine_interval)
     if args.action in ("run", "all"):
         pbf.run(case, args.np, args.timeout)
     if args.action in ("analyse", "all"):

@@ -496,8 +496,8 @@ def analyse(case):
         s[f"worst_{c}_system_error"] = float(np.max(np.abs(d[f"{c}_system_error"])))
     s["worst_momentum_continuum_error"] = float(max(np.max(np.abs(d[f"mom_{c}_continuum_error"])) for c in "xyz"))
     s["dem_updates_speed_limited"] = limited_updates(case)
-    cpu = re.findall(r"ExecutionTime = (\S+) s", open(os.path.join(case, "log.meltdemFoam")).read())
-    s["cpu_s"] = float(cpu[-1]) if cpu else float("nan")  # solver CPU time of rank 0 (LAMMPS included)
+    cpu = fc.execution_time(case)
+    s["cpu_s"] = float("nan") if cpu is None else cpu  # solver CPU time of rank 0 (LAMMPS included)
     s["wall_s"] = meta.get("wall_s", float("nan"))
     s["cells"] = int(np.prod(meta["n_cells"]))
     s["cell_m"] = meta["cell"]

@@ -416,3 +416,11 @@ def refinement_dict(levels, interval, criteria, buffer_layers=1):
 {body}    }}
 }}
 """
+
+
+def execution_time(case, log="log.meltdemFoam"):
+    """The solver's last ExecutionTime in CASE/log [s] (CPU of the master rank); None if none."""
+    import re
+    path = os.path.join(case, log)
+    cpu = re.findall(r"ExecutionTime = (\S+) s", open(path).read()) if os.path.exists(path) else []
+    return float(cpu[-1]) if cpu else None
