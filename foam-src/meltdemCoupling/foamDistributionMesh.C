@@ -1,6 +1,6 @@
 #include "foamDistributionMesh.H"
 
-#include "Random.H"
+#include "cellBoxTree.H"
 
 #include <algorithm>
 
@@ -18,7 +18,6 @@ void Foam::meltdem::foamDistributionMesh::update()
     const fvMesh& mesh = mesh_;
     cellBoxes_.setSize(mesh.nCells());
     boxCells_ = true;
-    tree_.reset();
     lattice_ = ::meltdem::coupling::BoxCellLattice();
     const pointField& pts = mesh.points();
     const cellList& cells = mesh.cells();
@@ -47,24 +46,13 @@ void Foam::meltdem::foamDistributionMesh::update()
         // beside cells refined L levels (8 bytes a slot)
         lattice_.build(lo, hi, 64.0);
     }
-    if (!lattice_.empty())
-    {
-        return;  // the lattice answers every search: no octree
-    }
+}
 
-    treeBoundBox overall(pts);
-    Random rnd(261782);
-    overall = overall.extend(rnd, 1e-4);
-    overall.min() -= point::uniform(ROOTVSMALL);
-    overall.max() += point::uniform(ROOTVSMALL);
-    tree_.reset
-    (
-        new indexedOctree<treeDataCell>
-        (
-            treeDataCell(true, mesh, polyMesh::CELL_TETS),
-            overall, 8, 10, 5.0
-        )
-    );
+
+const Foam::indexedOctree<Foam::treeDataCell>&
+Foam::meltdem::foamDistributionMesh::tree() const
+{
+    return cellBoxTree::New(mesh_).tree();
 }
 
 
@@ -77,10 +65,10 @@ long Foam::meltdem::foamDistributionMesh::find_cell(const Eigen::Vector3d& p) co
     const point pt(p.x(), p.y(), p.z());
     if (!boxCells_)
     {
-        return tree_->findInside(pt);
+        return tree().findInside(pt);
     }
     label best = -1;
-    for (const label celli : tree_->findBox(treeBoundBox(pt, pt)))
+    for (const label celli : tree().findBox(treeBoundBox(pt, pt)))
     {
         if (cellBoxes_[celli].contains(pt) && (best < 0 || celli < best)) best = celli;
     }
@@ -139,7 +127,7 @@ void Foam::meltdem::foamDistributionMesh::cells_in_sphere
     // boxes overlapping the sphere's box: a superset of the cells it touches
     // (in ascending order, as the lattice gives them)
     const std::size_t start = cells.size();
-    const labelList hits(tree_->findBox(search));
+    const labelList hits(tree().findBox(search));
     for (const label celli : hits)
     {
         if (cellBoxes_[celli].overlaps(search)) cells.push_back(long(celli));
