@@ -425,10 +425,7 @@ def main(argv=None):
     if a.action in ("run", "all"):
         run(a.case, a.np)
         if a.np > 1:
-            fc.run(["reconstructParMesh", "-mergeTol", "1e-6"] if a.refine else ["reconstructPar"], a.case,
-                   "log.reconstructParMesh" if a.refine else "log.reconstructPar")
-            if a.refine:
-                fc.run(["reconstructPar"], a.case, "log.reconstructPar")
+            fc.reconstruct(a.case)
     if a.action in ("analyse", "all"):
         analyse(a.case)
 

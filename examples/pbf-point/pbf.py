@@ -373,13 +373,9 @@ def run(case, np_=1, timeout=None):
             rc = "timeout"
     wall = time.time() - t0
     if np_ > 1:
-        # the analysis reads the fields of the case folder (also after a stop or a timeout); a
-        # refined run's meshes first (reconstructParMesh), and the cell centres and volumes
-        refined = json.load(open(os.path.join(case, "pbf.json"))).get("refine", 0) > 0
-        if refined:
-            fc.run(["reconstructParMesh", "-mergeTol", "1e-6"], case, "log.reconstructParMesh", check=False)
-        fields = "(T alpha.metal U liquidFraction" + (" C V)" if refined else ")")
-        fc.run(["reconstructPar", "-fields", fields], case, "log.reconstructPar", check=False)
+        # the analysis reads the fields of the case folder (also after a stop or a timeout), and
+        # on a refined run the cell centres and volumes
+        fc.reconstruct(case, ["T", "alpha.metal", "U", "liquidFraction", "C", "V"], check=False)
     with open(os.path.join(case, "wall_seconds"), "w") as f:
         f.write(f"{wall:.1f} {np_}\n")
     print(f"{case}: ran {wall:.0f} s on {np_} rank(s)" + ("" if rc == 0 else f" (stopped: {rc})"))

@@ -368,7 +368,6 @@ def lattice_field(case, time, name, n_fine, h, origin=(0.0, 0.0, 0.0)):
     """A written field on the lattice of the finest cells (n_fine = (nx, ny, nz) cells of h from
     origin), as an (nz, ny, nx) array: as written on a uniform mesh; on a refined one (the time has
     the C and V of CELL_GEOMETRY_FUNCTIONS) each cell's value fills the finest cells it covers."""
-    import numpy as np
     nx, ny, nz = n_fine
     values = np.asarray(read_internal(os.path.join(case, time, name)), dtype=float)
     if not os.path.exists(os.path.join(case, time, "C")):
@@ -392,7 +391,6 @@ def refinement_ledger(case):
     """The mesh changes of a refining run (postProcessing/refinement/<start>/refinement.csv of every
     start), one row each, and the worst |after/before - 1| of metal and enthalpy over them."""
     import glob
-    import numpy as np
     rows = [np.atleast_1d(np.genfromtxt(f, delimiter=",", names=True))
             for f in sorted(glob.glob(os.path.join(case, "postProcessing", "refinement", "*", "refinement.csv")))]
     if not rows:
@@ -424,3 +422,25 @@ def execution_time(case, log="log.meltdemFoam"):
     path = os.path.join(case, log)
     cpu = re.findall(r"ExecutionTime = (\S+) s", open(path).read()) if os.path.exists(path) else []
     return float(cpu[-1]) if cpu else None
+
+
+def reconstruct_commands(case, fields=None):
+    """[(command, log)] that reconstruct the decomposed times the case folder lacks: where the mesh
+    changed (adaptive refinement writes processorN/<time>/polyMesh) reconstructParMesh first, which
+    also writes the addressing reconstructPar needs; then reconstructPar (of `fields` only, if given).
+    Empty when there is nothing new."""
+    proc0 = os.path.join(case, "processor0")
+    new = [d for d in time_dirs(proc0) if not os.path.isdir(os.path.join(case, d))]
+    if not new:
+        return []
+    changed = [d for d in new if os.path.isdir(os.path.join(proc0, d, "polyMesh"))]
+    cmds = [(["reconstructParMesh", "-mergeTol", "1e-6", "-time", ",".join(changed)], "log.reconstructParMesh")]
+    cmds = cmds if changed else []
+    select = ["-fields", "(" + " ".join(fields) + ")"] if fields else []
+    return cmds + [(["reconstructPar", "-time", ",".join(new)] + select, "log.reconstructPar")]
+
+
+def reconstruct(case, fields=None, check=True):
+    """Run reconstruct_commands(case, fields)."""
+    for cmd, log in reconstruct_commands(case, fields):
+        run(cmd, case, log, check=check)

@@ -22,6 +22,7 @@ import sys
 import time
 
 from .. import paths
+from ..case import foam as fc
 from . import caselock
 from . import check as chk
 from . import examples as ex
@@ -405,31 +406,12 @@ def run_foam(case, np_, resume, rebuilt=False):
     return wall
 
 
-def _times(folder):
-    out = []
-    for d in os.listdir(folder) if os.path.isdir(folder) else []:
-        try:
-            out.append((float(d), d))
-        except ValueError:
-            pass
-    return [d for _, d in sorted(out)]
-
-
 def reconstruct(case):
-    """The decomposed times the case folder lacks, reconstructed; where the mesh changed (adaptive
-    refinement writes processorN/<time>/polyMesh) its mesh first, with reconstructParMesh, which also
-    writes the addressing reconstructPar needs."""
-    proc0 = os.path.join(case, "processor0")
-    new = [d for d in _times(proc0) if not os.path.isdir(os.path.join(case, d))]
-    if not new:
-        return
-    changed = [d for d in new if os.path.isdir(os.path.join(proc0, d, "polyMesh"))]
-    if changed:
-        say(f"reconstructing the refined mesh at {len(changed)} time(s) (log.reconstructParMesh)")
-        tool(["reconstructParMesh", "-mergeTol", "1e-6", "-time", ",".join(changed)], case,
-             "log.reconstructParMesh")
-    say("reconstructing (log.reconstructPar)")
-    tool(["reconstructPar", "-time", ",".join(new)], case, "log.reconstructPar")
+    """The decomposed times the case folder lacks, reconstructed (fc.reconstruct_commands: a refined
+    run's meshes first)."""
+    for cmd, log in fc.reconstruct_commands(case):
+        say(f"reconstructing{' the refined mesh' if cmd[0] == 'reconstructParMesh' else ''} ({log})")
+        tool(cmd, case, log)
 
 
 def _wedge(case):
