@@ -671,7 +671,9 @@ mc::ExchangeRecord FixPowderMelt::record(int i) const
 
 void FixPowderMelt::interval_records(std::vector<mc::ExchangeRecord> &out) const
 {
-  out = finished;
+  out.clear();
+  out.reserve(finished.size() + std::size_t(atom->nlocal));
+  out.insert(out.end(), finished.begin(), finished.end());
   for (int i = 0; i < atom->nlocal; i++)
     if (atom->mask[i] & groupbit) out.push_back(record(i));
   // by ID: the coupling's sums then do not depend on LAMMPS's atom order, which a sort or

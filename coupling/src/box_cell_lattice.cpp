@@ -20,6 +20,7 @@ bool BoxCellLattice::build(const std::vector<Eigen::Vector3d> &lo, const std::ve
     p.erase(std::unique(p.begin(), p.end()), p.end());
     n_[a] = int(p.size()) - 1;
     if (n_[a] < 1) return false;
+    per_length_[a] = n_[a] / (p.back() - p.front());
   }
   const double total = double(n_[0]) * n_[1] * n_[2];
   if (total > max_slots_per_cell * double(ncells)) return false;
@@ -48,6 +49,44 @@ bool BoxCellLattice::build(const std::vector<Eigen::Vector3d> &lo, const std::ve
   return true;
 }
 
+int BoxCellLattice::guess(int axis, double x) const
+{
+  const double g = (x - planes_[axis].front()) * per_length_[axis];
+  return g > 0.0 ? int(std::min(g, double(n_[axis]))) : 0;  // (NaN to 0)
+}
+
+int BoxCellLattice::upper(int axis, double x) const
+{
+  const std::vector<double> &q = planes_[axis];
+  const int m = int(q.size());
+  int i = guess(axis, x);
+  for (int step = 0; step < 4; ++step) {
+    if (i < m && q[std::size_t(i)] <= x)
+      ++i;
+    else if (i > 0 && q[std::size_t(i) - 1] > x)
+      --i;
+    else
+      return i;
+  }
+  return int(std::upper_bound(q.begin(), q.end(), x) - q.begin());
+}
+
+int BoxCellLattice::lower(int axis, double x) const
+{
+  const std::vector<double> &q = planes_[axis];
+  const int m = int(q.size());
+  int i = guess(axis, x);
+  for (int step = 0; step < 4; ++step) {
+    if (i < m && q[std::size_t(i)] < x)
+      ++i;
+    else if (i > 0 && q[std::size_t(i) - 1] >= x)
+      --i;
+    else
+      return i;
+  }
+  return int(std::lower_bound(q.begin(), q.end(), x) - q.begin());
+}
+
 long BoxCellLattice::find_cell(const Eigen::Vector3d &p) const
 {
   if (slots_.empty()) return -1;
@@ -56,7 +95,7 @@ long BoxCellLattice::find_cell(const Eigen::Vector3d &p) const
   for (int a = 0; a < 3; ++a) {
     const std::vector<double> &q = planes_[a];
     if (!(p[a] >= q.front() && p[a] <= q.back())) return -1;
-    const int up = int(std::upper_bound(q.begin(), q.end(), p[a]) - q.begin());  // q[up-1] <= p < q[up]
+    const int up = upper(a, p[a]);  // q[up-1] <= p < q[up]
     last[a] = std::min(up - 1, n_[a] - 1);
     first[a] = q[std::size_t(up) - 1] == p[a] && up >= 2 ? up - 2 : last[a];
   }
@@ -77,8 +116,8 @@ void BoxCellLattice::cells_in_box(const Eigen::Vector3d &lo, const Eigen::Vector
   for (int a = 0; a < 3; ++a) {
     const std::vector<double> &q = planes_[a];
     // intervals [q[i], q[i+1]] with q[i+1] >= lo and q[i] <= hi
-    first[a] = std::max(0, int(std::lower_bound(q.begin(), q.end(), lo[a]) - q.begin()) - 1);
-    last[a] = std::min(n_[a] - 1, int(std::upper_bound(q.begin(), q.end(), hi[a]) - q.begin()) - 1);
+    first[a] = std::max(0, lower(a, lo[a]) - 1);
+    last[a] = std::min(n_[a] - 1, upper(a, hi[a]) - 1);
     if (!(lo[a] <= q.back() && hi[a] >= q.front()) || first[a] > last[a]) return;
   }
   const std::size_t start = cells.size();

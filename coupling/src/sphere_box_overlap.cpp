@@ -44,42 +44,27 @@ double atan2_first_quadrant(double y, double x)
   return M_PI / 2.0 + (6.123233995736765886130e-17 - atan_unit(x / y));  // the bits pi/2 lacks
 }
 
-// The part of F(x) that one cutting plane (at offset c >= 0, y or z) contributes:
-// -1/2 ∫ (R^2 - x^2) asin(c / rho) dx - c/2 ∫ sqrt(R^2 - c^2 - x^2) dx, rho^2 = R^2 - x^2,
-// with w = sqrt(R^2 - c^2 - x^2) (so asin(c / rho) = atan2(c, w)); the first integral by
-// parts, its remainder in closed form (asin, and atan for the 1 / (R^2 - x^2) term).
-double plane_part(double R, double c, double x, double w)
+// U(a, b, c) for 0 <= a, b, c with a^2 + b^2 + c^2 < R^2, by the divergence theorem:
+// R^3/3 times the solid angle of the spherical triangle (Gauss-Bonnet: pi/2 less each face's
+// arc angle phi_i times t_i / R and each edge's turn atan(t_j t_k / (R m_jk))), less
+// t_i/3 times each flat face's area (a disk quadrant, angle phi_i);
+// m_jk = sqrt(R^2 - t_j^2 - t_k^2) is where the edge of planes j and k meets the sphere
+double octant_corner(double R, double a, double b, double c)
 {
-  if (c == 0.0 || x == 0.0) return 0.0;  // every term carries x or c
-  const double S2 = (R - c) * (R + c);
-  const double v = R * R * x - x * x * x / 3.0;
-  // atan2(x, w) is shared by the remainder and ∫_0^x sqrt(S2 - t^2) dt = (x w + S2 atan2(x, w)) / 2
-  const double angle = atan2_first_quadrant(x, w);
-  const double rest = c * ((S2 / 6.0 - 2.0 * R * R / 3.0) * angle - x * w / 6.0) +
-                      2.0 * R * R * R / 3.0 * atan2_first_quadrant(x * c, R * w);
-  return -0.5 * (v * atan2_first_quadrant(c, w) - rest) - 0.25 * c * (x * w + S2 * angle);
-}
-
-// F(x) = ∫_0^x A(t) dt, A the area of the disk of radius sqrt(R^2 - t^2) with y >= b, z >= c;
-// wb, wc: sqrt(R^2 - b^2 - x^2), sqrt(R^2 - c^2 - x^2)
-double slice_antiderivative(double R, double b, double c, double x, double wb, double wc)
-{
-  return M_PI / 4.0 * (R * R * x - x * x * x / 3.0) + plane_part(R, b, x, wb) + plane_part(R, c, x, wc) + b * c * x;
-}
-
-// U(a, b, c) for b, c >= 0, a in [-R, R]
-double upper_corner_nonneg(double R, double a, double b, double c)
-{
-  const double q = R * R - b * b - c * c;
-  if (!(q > 0.0)) return 0.0;
-  const double xm = std::sqrt(q);
-  if (a >= xm) return 0.0;
-  const double Fm = slice_antiderivative(R, b, c, xm, c, b);
-  if (a <= -xm) return 2.0 * Fm;  // F is odd
-  if (a == 0.0) return Fm;
-  const double wb = std::sqrt(std::max(0.0, (R - b) * (R + b) - a * a));
-  const double wc = std::sqrt(std::max(0.0, (R - c) * (R + c) - a * a));
-  return Fm - slice_antiderivative(R, b, c, a, wb, wc);
+  const double R2 = R * R;
+  const double mab = std::sqrt(std::max(0.0, (R - a) * (R + a) - b * b));
+  const double mac = std::sqrt(std::max(0.0, (R - a) * (R + a) - c * c));
+  const double mbc = std::sqrt(std::max(0.0, (R - b) * (R + b) - c * c));
+  double v = M_PI / 6.0 * R2 * R + (a * b * mab + a * c * mac + b * c * mbc) / 3.0 - a * b * c;
+  // a face at offset 0 and an edge with an offset 0 contribute nothing
+  if (a > 0.0) v -= a * (3.0 * R2 - a * a) / 6.0 * atan2_first_quadrant(mac * mab - b * c, b * mac + c * mab);
+  if (b > 0.0) v -= b * (3.0 * R2 - b * b) / 6.0 * atan2_first_quadrant(mbc * mab - a * c, a * mbc + c * mab);
+  if (c > 0.0) v -= c * (3.0 * R2 - c * c) / 6.0 * atan2_first_quadrant(mbc * mac - a * b, a * mbc + b * mac);
+  const double edge = R2 * R / 3.0;
+  if (a > 0.0 && b > 0.0) v -= edge * atan2_first_quadrant(a * b, R * mab);
+  if (a > 0.0 && c > 0.0) v -= edge * atan2_first_quadrant(a * c, R * mac);
+  if (b > 0.0 && c > 0.0) v -= edge * atan2_first_quadrant(b * c, R * mbc);
+  return v;
 }
 
 // U(a, b, c) for folded offsets in [0, R] or kFree (no constraint along that axis: twice the
@@ -91,11 +76,12 @@ double upper_corner(double R, double a, double b, double c)
   if (b == kFree) b = 0.0, factor *= 2.0;
   if (c == kFree) c = 0.0, factor *= 2.0;
   if (a * a + b * b + c * c >= R * R) return 0.0;
-  // the smallest offset along x: 0 there makes F(a) vanish, 0 on both others is a cap
-  if (b < a) std::swap(a, b);
-  if (c < a) std::swap(a, c);
-  if (b == 0.0 && c == 0.0) return factor * M_PI * (R - a) * (R - a) * (2.0 * R + a) / 12.0;
-  return factor * upper_corner_nonneg(R, a, b, c);
+  // one offset alone is a quarter cap
+  if (int(a == 0.0) + int(b == 0.0) + int(c == 0.0) >= 2) {
+    const double t = a + b + c;
+    return factor * M_PI * (R - t) * (R - t) * (2.0 * R + t) / 12.0;
+  }
+  return factor * octant_corner(R, a, b, c);
 }
 
 // One axis of a box [lo, hi] (offsets from the centre, clamped to [-R, R]) as signed
@@ -145,8 +131,8 @@ bool trivial_overlap(const Eigen::Vector3d &c, double r, const Eigen::Vector3d &
                      double &volume)
 {
   const Eigen::Vector3d closest = c.cwiseMax(lo).cwiseMin(hi);
-  if (!(r > 0.0) || (closest - c).squaredNorm() >= r * r) {
-    volume = 0.0;  // disjoint
+  if (!(r > 0.0) || !(hi.array() > lo.array()).all() || (closest - c).squaredNorm() >= r * r) {
+    volume = 0.0;  // disjoint, or an empty box
     return true;
   }
   const Eigen::Vector3d far = (c - lo).cwiseAbs().cwiseMax((hi - c).cwiseAbs());
@@ -368,34 +354,40 @@ double SphereBoxOverlaps::corner(int i, int j, int k)
 void SphereBoxOverlaps::octant_pieces()
 {
   // U at the folded offsets {free, |cut|} of the three axes, each evaluated once
-  const auto term = [](double folded) { return folded == kFree ? 0 : 1; };
   double U[2][2][2] = {};
   for (int i = 0; i < 2; ++i)
     for (int j = 0; j < 2; ++j)
       for (int k = 0; k < 2; ++k) {
-        const double t[3] = {i ? std::abs(cut_[0]) : kFree, j ? std::abs(cut_[1]) : kFree,
-                             k ? std::abs(cut_[2]) : kFree};
         const bool cut = (!i || cut_[0] > -r_) && (!j || cut_[1] > -r_) && (!k || cut_[2] > -r_);
-        if (cut) U[i][j][k] = upper_corner(r_, t[0], t[1], t[2]);
+        if (cut)
+          U[i][j][k] = upper_corner(r_, i ? std::abs(cut_[0]) : kFree, j ? std::abs(cut_[1]) : kFree,
+                                    k ? std::abs(cut_[2]) : kFree);
       }
-  // each side of a cut as half-space terms over those offsets (the sphere is symmetric): above
-  // a >= 0 is {x >= a}; below it, everything minus that; mirrored for a < 0. Without a cut
-  // the whole axis counts as the side above
-  AxisTerms side[3][2];
+  // each side of a cut as coefficients of the free and the folded term (the sphere is
+  // symmetric): above a >= 0 is {x >= a}, (0, 1); below it, everything minus that, (1, -1);
+  // mirrored for a < 0. Without a cut the whole axis counts as the side above, (1, 0)
+  double coef[3][2][2];
   for (int a = 0; a < 3; ++a) {
     if (!(cut_[a] > -r_)) {
-      side[a][1].add(kFree, 1.0, r_);
+      coef[a][0][0] = coef[a][0][1] = 0.0;
+      coef[a][1][0] = 1.0, coef[a][1][1] = 0.0;
       continue;
     }
-    const int near = cut_[a] >= 0.0 ? 1 : 0;  // the side that is the folded upper half-space
-    side[a][near].add(std::abs(cut_[a]), 1.0, r_);
-    side[a][1 - near].add(kFree, 1.0, r_);
-    side[a][1 - near].add(std::abs(cut_[a]), -1.0, r_);
+    const int near = cut_[a] >= 0.0 ? 1 : 0;
+    coef[a][near][0] = 0.0, coef[a][near][1] = 1.0;
+    coef[a][1 - near][0] = 1.0, coef[a][1 - near][1] = -1.0;
   }
+  // contracted one axis at a time
+  double Vx[2][2][2], Vxy[2][2][2];
+  for (int s = 0; s < 2; ++s)
+    for (int j = 0; j < 2; ++j)
+      for (int k = 0; k < 2; ++k) Vx[s][j][k] = coef[0][s][0] * U[0][j][k] + coef[0][s][1] * U[1][j][k];
+  for (int sx = 0; sx < 2; ++sx)
+    for (int sy = 0; sy < 2; ++sy)
+      for (int k = 0; k < 2; ++k) Vxy[sx][sy][k] = coef[1][sy][0] * Vx[sx][0][k] + coef[1][sy][1] * Vx[sx][1][k];
   for (int p = 0; p < 8; ++p) {
-    const AxisTerms ax[3] = {side[0][p & 1], side[1][(p >> 1) & 1], side[2][(p >> 2) & 1]};
-    piece_[p] = alternating_sum(
-        ax, [&](int i, int j, int k) { return U[term(ax[0].t[i])][term(ax[1].t[j])][term(ax[2].t[k])]; });
+    const int sx = p & 1, sy = (p >> 1) & 1, sz = (p >> 2) & 1;
+    piece_[p] = std::max(0.0, coef[2][sz][0] * Vxy[sx][sy][0] + coef[2][sz][1] * Vxy[sx][sy][1]);
   }
 }
 

@@ -1,8 +1,9 @@
 #pragma once
 // Cell search on meshes whose cells are axis-aligned boxes on a tensor-product lattice (the
 // blockMesh hexahedra of the scenes, graded or not, refined by hexRef8 or not, a rank's part of
-// one): a point or a box is located by binary search in the three lists of coordinate planes
-// instead of a tree walk.
+// one): a point or a box is located in the three lists of coordinate planes instead of a tree
+// walk, by the index a uniform spacing predicts and a few steps from it (binary search when
+// the planes are far from uniform).
 #include <Eigen/Core>
 
 #include <vector>
@@ -28,10 +29,16 @@ class BoxCellLattice {
   void cells_in_box(const Eigen::Vector3d &lo, const Eigen::Vector3d &hi, std::vector<long> &cells) const;
 
  private:
+  // std::upper_bound / std::lower_bound of x in planes_[axis], as indices
+  int upper(int axis, double x) const;
+  int lower(int axis, double x) const;
+  int guess(int axis, double x) const;
+
   long slot(int i, int j, int k) const { return slots_[(std::size_t(k) * n_[1] + std::size_t(j)) * n_[0] + i]; }
 
   std::vector<double> planes_[3];  // sorted coordinate planes per axis; n_[a] = intervals
   int n_[3] = {0, 0, 0};
+  double per_length_[3] = {0.0, 0.0, 0.0};  // intervals per unit length (the mean spacing's inverse)
   std::vector<long> slots_;  // cell of each lattice slot, -1 for a hole
   bool spanning_ = false;    // some cell covers more than one slot
 };

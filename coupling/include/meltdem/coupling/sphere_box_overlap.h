@@ -3,11 +3,11 @@
 // boxes (cells) around one sphere at the cost of the planes they share.
 //
 // With the sphere at the origin, U(a, b, c) = |ball(R) ∩ {x >= a, y >= b, z >= c}| for
-// b, c >= 0 is F(x_m) - F(a), x_m = sqrt(R^2 - b^2 - c^2), where F is the antiderivative
-// along x of the slice area (a disk quadrant cut at y = b, z = c); F is elementary (atan2 and
-// square roots) and odd in x, so a may have either sign; a negative b or c is reflected:
-// U(a, -b, c) = 2 U(a, 0, c) - U(a, b, c). A box is the alternating sum of U over its eight
-// corners (doc/foam_particle_coupling.rst, "Distribution models").
+// a, b, c >= 0 is R^3/3 times the solid angle of its spherical triangle less a/3, b/3, c/3
+// times its three flat faces' areas (divergence theorem; the angle by Gauss-Bonnet), six
+// atans and three square roots; a negative offset is reflected: U(-a, b, c) = 2 U(0, b, c) -
+// U(a, b, c). A box is the alternating sum of U over its eight corners
+// (doc/foam_particle_coupling.rst, "Distribution models").
 #include <Eigen/Core>
 
 #include <vector>
