@@ -32,8 +32,8 @@ with exchange_seconds and lammps_seconds from postProcessing/particleLedger/part
 (rank 0's wall clock: sampling, distribution, deposit, lost-particle handling) and the loop
 time = the wall-clock time between the log's ExecutionTime lines of steps 1 and N, stamped
 as the solver prints them (the log's own ExecutionTime is CPU time to 0.01 s and ClockTime
-whole seconds: too coarse). On np 2, exchange_seconds is rank 0's and includes its wait
-at the exchange's first collective for the other rank to finish the previous step. Each
+whole seconds: too coarse). On np 2 both clocks start after a barrier: a rank's wait for
+the other's fluid solve is fluid time, its wait for the other's DEM steps LAMMPS time. Each
 configuration runs --repeat times (interleaved) and the run with the shortest loop is kept
 (the machine is shared).
 Writes coupling_exchange_share.md and .png into --out. --quick: 8^3 particles, 10^3 cells,
@@ -314,8 +314,8 @@ with open(os.path.join(args.out, "coupling_exchange_share.md"), "w") as f:
             "solve (the particles' drag and heat set the gas moving, so it is real work: a particle-free run of the "
             "same gas needs no pressure iterations at all), the `meltdemBalance` function object and the ledger "
             "booking after each step (under 0.5 % of the samples in a profile) and the I/O. On np 2 the exchange "
-            "time is rank 0's and includes its wait, at the exchange's first collective, for the other rank to "
-            "finish the previous step.\n\n")
+            "and LAMMPS clocks start after a barrier: rank 0's wait for the other rank's fluid solve counts as "
+            "fluid time, its wait for the other's DEM steps as LAMMPS time.\n\n")
     f.write(table + "\n\nCosts per fluid step:\n\n" + cost_table + "\n\n")
     for line in lines:
         f.write(f"- {line}\n")

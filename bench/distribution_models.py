@@ -100,7 +100,7 @@ with open(os.path.join(args.out, "distribution_models.md"), "w") as f:
     f.write("- **L1 error** = Σ_i |w_i V_p − V_i| / V_p: the deposited cell volume fraction w_i V_p / V_c against "
             "the exact one V_i / V_c, summed over cells and weighted by V_c / V_p (0 = exact, 2 = nothing in "
             "the right cells). `overlap` is exact by construction (w_i = V_i / Σ V_i), so its L1 error is "
-            "round-off plus the quadrature tolerance of `sphere_box_overlap` (Σ_i V_i against V_p) here; it "
+            "the round-off of the closed-form `sphere_box_overlap` (Σ_i V_i against V_p) here; it "
             "departs from the exact fractions only where the mesh clips the sphere.\n")
     f.write("- **Peak fraction** = max_i w_i V_p / V_c, the largest cell volume fraction deposited: what spikes "
             "the fluid density/enthalpy in a cell and collapses the fluid time step (thesis fig. 3.7). A "

@@ -209,9 +209,12 @@ void Foam::meltdem::particleCoupling::subCycles
 
 void Foam::meltdem::particleCoupling::advance(Time& runTime, const fluidFields& f)
 {
-    double t0 = seconds();
     ::meltdem::LammpsCouplingHost& lammps = (*host_)();
     const MPI_Comm comm = comm_->comm();
+    // the clocks start together on every rank: a rank's wait for the others' fluid solve
+    // or DEM steps is not booked as exchange time
+    MPI_Barrier(comm);
+    double t0 = seconds();
 
     // 1. the fluid each particle sees, fixed over the step
     std::vector<mc::ExchangeRecord> start;
@@ -253,6 +256,7 @@ void Foam::meltdem::particleCoupling::advance(Time& runTime, const fluidFields& 
     bounds_->widen(records);
     // back to the DEM's own step unless the input changed it meanwhile (fix powder/dt)
     if (shortened && lammps.timestep() == dtSub) lammps.set_timestep(dtDem);
+    MPI_Barrier(comm);
     lammpsSeconds_ += seconds() - w0;
     t0 = seconds();
     subSteps_ = n;
