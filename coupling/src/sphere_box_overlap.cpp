@@ -326,12 +326,20 @@ void SphereBoxOverlaps::reset(const Eigen::Vector3d &c, double r, const std::vec
     return;
   }
   for (int a = 0; a < 3; ++a) {
+    // the boxes of a lattice repeat their coordinates: drop a value equal to one of the last
+    // two kept before sorting, then fold
     auto &p = planes_[a];
-    p.assign(1, kFree);
-    for (std::size_t i = 0; i < lo.size(); ++i) {
-      p.push_back(std::abs(clamp_offset(lo[i][a] - c[a], r)));
-      p.push_back(std::abs(clamp_offset(hi[i][a] - c[a], r)));
-    }
+    p.clear();
+    for (std::size_t i = 0; i < lo.size(); ++i)
+      for (const double v : {lo[i][a], hi[i][a]}) {
+        const std::size_t m = p.size();
+        if ((m > 0 && p[m - 1] == v) || (m > 1 && p[m - 2] == v)) continue;
+        p.push_back(v);
+      }
+    std::sort(p.begin(), p.end());
+    p.erase(std::unique(p.begin(), p.end()), p.end());
+    for (double &v : p) v = std::abs(clamp_offset(v - c[a], r));
+    p.push_back(kFree);
     std::sort(p.begin(), p.end());
     p.erase(std::unique(p.begin(), p.end()), p.end());
   }
