@@ -30,16 +30,28 @@ def main():
     ap.add_argument("--np", type=int, default=1)
     ap.add_argument("--bed")
     ap.add_argument("--plot-only", action="store_true", help="re-plot from WORK/results.json")
+    ap.add_argument("--reanalyse", action="store_true",
+                    help="analyse the finished cases of WORK again (a new measure), then write")
     ap.add_argument("--gas-cp", type=float, default=1e5, help="gas heat capacity (see below)")
     ap.add_argument("--fluid-dt", type=float, default=1e-6, help="fluid step [s] (the table: 1e-6)")
     ap.add_argument("--gas-mu", type=float, default=1e-8, help="gas viscosity [Pa s] (the table: 1e-8)")
+    ap.add_argument("--courant", type=float, default=None,
+                    help="adaptive step: Courant number <= this, --fluid-dt the largest step (slm-track --courant)")
     ap.add_argument("--strict", action="store_true", help="exit 1 when a point did not run (smoke test)")
     ap.add_argument("--out", default=HERE, help="folder of the .md and .png (default: bench/)")
     a = ap.parse_args()
     os.makedirs(a.work, exist_ok=True)
     res_path = os.path.join(a.work, "results.json")
     results = json.load(open(res_path)) if os.path.exists(res_path) else {}
-    if not a.plot_only:
+    if a.reanalyse:
+        for key, s in results.items():
+            case = os.path.join(a.work, f"cell_{s['cell_m'] * 1e6:g}um")
+            if s.get("status") == "ok" and os.path.isdir(case):
+                new = scene.analyse(case)
+                new.update({k: s.get(k) for k in ("status", "gas_cp", "fluid_dt_s", "courant")})
+                results[key] = new
+        json.dump(results, open(res_path, "w"), indent=1)
+    elif not a.plot_only:
         bed = a.bed
         if not bed:
             bed = os.path.join(a.work, "bed", "bed.dump")
@@ -50,7 +62,7 @@ def main():
             case = os.path.join(a.work, f"cell_{h * 1e6:g}um")
             t = time.time()
             scene.build(case, "ci", cell=h, bed=os.path.abspath(bed), gas_cp=a.gas_cp, fluid_dt=a.fluid_dt,
-                        gas_mu=a.gas_mu)
+                        gas_mu=a.gas_mu, courant=a.courant)
             try:
                 scene.run(case, a.np)
                 s = scene.analyse(case)
@@ -63,6 +75,7 @@ def main():
                 s = dict(status=why, wall_s=time.time() - t, cell_m=h)
             s["gas_cp"] = a.gas_cp
             s["fluid_dt_s"] = a.fluid_dt
+            s["courant"] = a.courant
             results[f"{a.gas_cp:g}/{h:.4g}"] = s
             json.dump(results, open(res_path, "w"), indent=1)
     write(results, a.np, a.out)
@@ -84,7 +97,12 @@ sub-cycles recomputed per step is what the scenes need next."""
 
 
 def step_us(s):
-    return f"{s['fluid_dt_s'] * 1e6:g}" if s.get("fluid_dt_s") else ""
+    if not s.get("fluid_dt_s"):
+        return ""
+    if s.get("courant"):
+        steps = f", {s['fluid_steps']} steps" if s.get("fluid_steps") else ""
+        return f"≤ {s['fluid_dt_s'] * 1e6:g} (Co ≤ {s['courant']:g}{steps})"
+    return f"{s['fluid_dt_s'] * 1e6:g}"
 
 
 def cpu(s):
@@ -109,10 +127,12 @@ def write(results, np_, out):
              "conduction-only melt width of the same eta P, v and Gaussian spot on bare SS304"
              + (f" ({ref['gaussian_width_m'] * 1e6:.1f} um; Rosenthal point source "
                 f"{ref['rosenthal_width_m'] * 1e6:.1f} um)." if ref else "."), "",
-             "| gas cp [J/kg/K] | cell [um] | fluid step [us] | cells | spot radius / cell | width [um] | depth [um] | "
-             "bead height [um] | width error vs finest | width error vs conduction estimate | CPU [s] | wall [s] | "
-             "status |",
-             "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+             "Surface width: the melted width on the substrate's top plane (peak T there extrapolated from the "
+             "two top substrate cell rows), without the molten grains above it.", "",
+             "| gas cp [J/kg/K] | cell [um] | fluid step [us] | cells | spot radius / cell | width [um] | "
+             "surface width [um] | depth [um] | bead height [um] | width error vs finest | "
+             "surface width vs finest | width error vs conduction estimate | CPU [s] | wall [s] | status |",
+             "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     fig, ax = plt.subplots(1, 2, figsize=(11, 4.2))
     for cp in series:
         rows = sorted([s for s in results.values() if s.get("gas_cp", 520.0) == cp], key=lambda s: -s["cell_m"])
@@ -121,16 +141,18 @@ def write(results, np_, out):
         for s in rows:
             h = s["cell_m"]
             if s.get("status") != "ok":
-                lines.append(f"| {cp:g} | {h * 1e6:g} | {step_us(s)} | | {50e-6 / h:.2f} | | | | | | | "
+                lines.append(f"| {cp:g} | {h * 1e6:g} | {step_us(s)} | | {50e-6 / h:.2f} | | | | | | | | | "
                              f"{s['wall_s']:.0f} | "
                              f"{s['status']} |")
                 continue
             ef = (s["track_width_m"] - finest["track_width_m"]) / finest["track_width_m"]
             ea = (s["track_width_m"] - s["gaussian_width_m"]) / s["gaussian_width_m"]
+            sw, swf = s.get("track_width_surface_m"), finest.get("track_width_surface_m")
+            es = f"{(sw - swf) / swf * 100:+.1f} %" if sw and swf else ""
             lines.append(f"| {cp:g} | {h * 1e6:g} | {step_us(s)} | {s['cells']} | {50e-6 / h:.2f} | "
-                         f"{s['track_width_m'] * 1e6:.1f} | "
+                         f"{s['track_width_m'] * 1e6:.1f} | {sw * 1e6 if sw else float('nan'):.1f} | "
                          f"{s['track_depth_m'] * 1e6:.1f} | {s['bead_height_m'] * 1e6:.1f} | "
-                         f"{ef * 100:+.1f} % | {ea * 100:+.1f} % | {cpu(s)} | {s['wall_s']:.0f} | ok |")
+                         f"{ef * 100:+.1f} % | {es} | {ea * 100:+.1f} % | {cpu(s)} | {s['wall_s']:.0f} | ok |")
         if not ok:
             continue
         ok = [s for s in ok if s.get("cpu_s") is not None]
@@ -144,6 +166,9 @@ def write(results, np_, out):
             ax[0].loglog(wall[ef > 0], ef[ef > 0], "s--", label=f"gas cp {cp:g}: vs finest mesh")
         hs = np.array([s["cell_m"] for s in ok]) * 1e6
         ax[1].plot(hs, [s["track_width_m"] * 1e6 for s in ok], "o-", label=f"width, gas cp {cp:g}")
+        if all(s.get("track_width_surface_m") for s in ok):
+            ax[1].plot(hs, [s["track_width_surface_m"] * 1e6 for s in ok], "^-",
+                       label=f"surface width, gas cp {cp:g}")
         ax[1].plot(hs, [s["track_depth_m"] * 1e6 for s in ok], "s--", label=f"depth, gas cp {cp:g}")
     lines += ["", READING]
     open(os.path.join(out, "slm_mesh_resolution.md"), "w").write("\n".join(lines) + "\n")

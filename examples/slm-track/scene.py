@@ -184,7 +184,7 @@ def refinement_dict(levels, fluid_dt, interval=1):
 
 
 def build(case, variant, cell=None, bed=None, track=None, distribution="overlap", np_=1, gas_cp=None, fluid_dt=None,
-          gas_mu=None, surface=None, refine=0, refine_interval=1):
+          gas_mu=None, surface=None, refine=0, refine_interval=1, courant=None):
     v = dict(VARIANTS[variant])
     surface = SURFACE if surface is None else surface
     gas_cp = gas_cp or GAS_CP_CASE
@@ -212,6 +212,9 @@ def build(case, variant, cell=None, bed=None, track=None, distribution="overlap"
     fluid_dt = fluid_dt or FLUID_DT
     fluid_dt = min(fluid_dt, dt_cap) if surface else fluid_dt
     n_sub = max(1, int(round(fluid_dt / DEM_DT)))
+    # courant: the step the flow allows (Courant number <= courant, at most fluid_dt), the DEM
+    # sub-cycles recomputed every step; else the fixed step of n_sub DEM steps
+    sub_cycles = "auto" if courant else n_sub
     cc.box_mesh(case, (0.0, -v["sub"], 0.0), (v["lx"], v["top"], v["lz"]), n,
                 {"substrate": ("wall", ["ymin"]), "atmosphere": ("patch", ["ymax"]),
                  "sides": ("wall", ["xmin", "xmax", "zmin", "zmax"])})
@@ -234,8 +237,12 @@ def build(case, variant, cell=None, bed=None, track=None, distribution="overlap"
     fc.transport(case, RHO, MU_MELT / RHO, GAS["rho"], gas_mu / GAS["rho"], SIGMA0)
     fc.gravity(case, (0.0, -G, 0.0))
     cell_fields = fc.CELL_GEOMETRY_FUNCTIONS if refine else ""
-    fc.control_dict(case, "meltdemFoam", t_end, dt_cap / 4, v["write"], max_co=0.3, max_alpha_co=0.3,
-                    max_dt=dt_cap, extra=cell_fields)
+    if courant:
+        fc.control_dict(case, "meltdemFoam", t_end, n_sub * DEM_DT / 4, v["write"], max_co=courant,
+                        max_alpha_co=courant, max_dt=n_sub * DEM_DT, extra=cell_fields)
+    else:
+        fc.control_dict(case, "meltdemFoam", t_end, dt_cap / 4, v["write"], max_co=0.3, max_alpha_co=0.3,
+                        max_dt=dt_cap, extra=cell_fields)
     fc.fv_schemes(case)
     fc.fv_solution(case, n_correctors=3)
     cc.exact_solves(case, p_rgh=1e-12, T=1e-14)   # the ledger balances (as tests/coupling)
@@ -265,7 +272,7 @@ particles
 {{
     lammpsInput     in.particles;
     distribution    {distribution};
-    demStepsPerFluidStep {n_sub};
+    demStepsPerFluidStep {sub_cycles};
 }}
 {refinement_dict(refine, n_sub * DEM_DT, refine_interval) if refine else ""}""")
     dump_every = 1000  # DEM steps (5 us between snapshots)
@@ -273,7 +280,7 @@ particles
     meta = dict(scene="slm-track", variant=variant, n_cells=list(n), particles=nparticles, t_scan_s=t_scan,
                 t_end_s=t_end, laser_x0_m=v["x0"], laser_x1_m=v["x1"], track_z_m=zc, dt_capillary_s=dt_cap,
                 distribution=distribution, bed_dump=os.path.abspath(dump), gas_cp=gas_cp, gas_mu=gas_mu,
-                fluid_dt_s=n_sub * DEM_DT, refine=refine, base_cell=h,
+                fluid_dt_s=n_sub * DEM_DT, courant=courant, refine=refine, base_cell=h,
                 **{k: v[k] for k in ("lx", "lz", "top", "sub", "cell", "cool", "write")})
     json.dump(meta, open(os.path.join(case, "scene.json"), "w"), indent=1)
     print(f"case {case}: {variant}, {n[0]}x{n[1]}x{n[2]} cells of {h * 1e6:g} um"
@@ -314,8 +321,11 @@ def track_geometry(case, meta):
     1/2, the middle of the melting range) at some written time; its boundary is interpolated
     linearly between cell centres on the peak temperature. Width = z extent (widest cell row),
     depth = below the substrate top on the track axis, height = final metal above the substrate
-    top (column sum of alpha); medians over the x-slices of the middle of the track (one spot
-    diameter away from its start and end)."""
+    top (column sum of alpha); surface width = the melted width on the substrate's top plane (the
+    peak temperature there extrapolated linearly from the two top substrate cell rows: the width a
+    cross-section or a top view of the bare track measures, without the molten grains above it);
+    medians over the x-slices of the middle of the track (one spot diameter away from its start
+    and end)."""
     f = 2 ** meta.get("refine", 0)
     nx, ny, nz = (k * f for k in meta["n_cells"])
     h = meta["cell"]
@@ -334,9 +344,10 @@ def track_geometry(case, meta):
     if not mid.any():
         mid = (xc >= meta["laser_x0_m"]) & (xc <= meta["laser_x1_m"])
     above = yc > 0
-    widths, depths, heights = [], [], []
+    widths, depths, heights, surface_widths = [], [], [], []
     axis = np.interp(meta["track_z_m"], zc, np.arange(nz))  # fractional index of the track axis
     k0 = int(np.floor(axis))
+    j_top = int(np.nonzero(~(yc > 0))[0][-1])                # the substrate's top cell row
     for i in np.nonzero(mid)[0]:
         w = 0.0
         for j in range(ny):
@@ -344,11 +355,16 @@ def track_geometry(case, meta):
             if cr:
                 w = max(w, cr[1] - cr[0])
         widths.append(w)
+        # peak T on the substrate's top plane, extrapolated from its two top cell rows
+        plane = 1.5 * tmax[:, j_top, i] - 0.5 * tmax[:, j_top - 1, i]
+        cr = profiles.level_span(plane, zc, t_half, h)
+        surface_widths.append(cr[1] - cr[0] if cr else 0.0)
         col = tmax[k0, :, i] * (1 - (axis - k0)) + tmax[min(k0 + 1, nz - 1), :, i] * (axis - k0)
         cr = profiles.level_span(np.where(above, np.max(col), col), yc, t_half, h)  # from below up to the top
         depths.append(max(-cr[0], 0.0) if cr else 0.0)
         heights.append(np.max(np.sum(alpha_end[:, above, i], axis=1) * h))
     return dict(track_width_m=float(np.median(widths)), track_depth_m=float(np.median(depths)),
+                track_width_surface_m=float(np.median(surface_widths)),
                 bead_height_m=float(np.median(heights)), melted_cells=int(np.sum(tmax >= t_half)),
                 peak_temperature_K=float(np.max(tmax)), snapshots=len(times), slices=int(mid.sum()))
 
@@ -506,6 +522,7 @@ def analyse(case):
     rows = [
         ("track width (peak T >= T(f_l = 1/2))", um(s["track_width_m"]),
          f"Rosenthal {um(s['rosenthal_width_m'])}, Gaussian {um(s['gaussian_width_m'])}"),
+        ("track width on the substrate's top plane", um(s["track_width_surface_m"]), ""),
         ("track depth below the substrate top", um(s["track_depth_m"]), ""),
         ("bead height above the substrate top", um(s["bead_height_m"]), "thesis expectation 30 um"),
         ("particles ejected (centre above bed top, moving up)", s["particles_ejected"], ""),
@@ -542,7 +559,11 @@ def main(argv=None):
     ap.add_argument("--track", type=float, help="track length [m]")
     ap.add_argument("--distribution", default="overlap", choices=["centre", "neighbours", "overlap"])
     ap.add_argument("--gas-cp", type=float, help="gas heat capacity [J/kg/K] (default argon's 520)")
-    ap.add_argument("--fluid-dt", type=float, help=f"fluid step [s] (default {FLUID_DT:g})")
+    ap.add_argument("--fluid-dt", type=float, help=f"fluid step [s] (default {FLUID_DT:g}; with --courant the "
+                    "largest)")
+    ap.add_argument("--courant", type=float, metavar="CO",
+                    help="adaptive fluid step: the largest with cell and interface Courant numbers <= CO (at most "
+                    "--fluid-dt), DEM sub-cycles recomputed every step (demStepsPerFluidStep auto)")
     ap.add_argument("--surface", action="store_true", help="surface tension and Marangoni on (see README)")
     ap.add_argument("--gas-mu", type=float, help="gas viscosity [Pa s] (default argon's 2.2e-5)")
     ap.add_argument("--refine", type=int, default=0, metavar="L",
@@ -555,7 +576,7 @@ def main(argv=None):
     if a.command in ("build", "all"):
         bed = a.bed if a.bed in (None, "spread") else os.path.abspath(a.bed)
         build(case, variant, a.cell, bed, a.track, a.distribution, a.np, a.gas_cp,
-              a.fluid_dt, a.gas_mu, a.surface or None, a.refine, a.refine_interval)
+              a.fluid_dt, a.gas_mu, a.surface or None, a.refine, a.refine_interval, a.courant)
     if a.command in ("run", "all"):
         run(case, a.np)
     if a.command in ("analyse", "all"):
