@@ -40,9 +40,10 @@ def most_cells(case, meta):
     return int(max(np.max(r["cellsAfter"]), np.prod(meta["n_cells"])))
 
 
-def one(work, bed, h, levels, fluid_dt, variant="ci", track=None):
-    case = os.path.join(work, f"h{h * 1e6:g}um_L{levels}")
-    scene.build(case, variant, cell=h, bed=bed, fluid_dt=fluid_dt, refine=levels, track=track)
+def one(work, bed, h, levels, fluid_dt, variant="ci", track=None, interval=1):
+    case = os.path.join(work, f"h{h * 1e6:g}um_L{levels}" + (f"_i{interval}" if levels and interval > 1 else ""))
+    scene.build(case, variant, cell=h, bed=bed, fluid_dt=fluid_dt, refine=levels, track=track,
+                refine_interval=interval)
     scene.run(case)
     s = scene.analyse(case)
     meta = json.load(open(os.path.join(case, "scene.json")))
@@ -76,6 +77,7 @@ def main():
     ap.add_argument("--out", default=HERE)
     ap.add_argument("--variant", default="ci", choices=sorted(scene.VARIANTS))
     ap.add_argument("--track", type=float, default=None, help="track length [m] (default: the variant's)")
+    ap.add_argument("--refine-interval", type=int, default=1, help="fluid steps between mesh updates of the AMR runs")
     a = ap.parse_args()
     os.makedirs(a.work, exist_ok=True)
     bed = os.path.join(a.work, "bed", "bed.dump")
@@ -85,7 +87,7 @@ def main():
     for pair in a.pairs.split(","):
         h, levels = float(pair.split(":")[0]), int(pair.split(":")[1])
         rows.append(one(a.work, bed, h, 0, a.fluid_dt, a.variant, a.track))
-        rows.append(one(a.work, bed, h, levels, a.fluid_dt, a.variant, a.track))
+        rows.append(one(a.work, bed, h, levels, a.fluid_dt, a.variant, a.track, a.refine_interval))
         json.dump(rows, open(os.path.join(a.work, "results.json"), "w"), indent=1)
     write(rows, a.fluid_dt, a.out, a.variant, a.track)
     return 0
