@@ -39,8 +39,8 @@ class BoxCellLattice {
   std::vector<double> planes_[3];  // sorted coordinate planes per axis; n_[a] = intervals
   int n_[3] = {0, 0, 0};
   double per_length_[3] = {0.0, 0.0, 0.0};  // intervals per unit length (the mean spacing's inverse)
-  std::vector<long> slots_;  // cell of each lattice slot, -1 for a hole
-  bool spanning_ = false;    // some cell covers more than one slot
+  std::vector<long> slots_;                 // cell of each lattice slot, -1 for a hole
+  bool spanning_ = false;                   // some cell covers more than one slot
 };
 
 }  // namespace meltdem::coupling
