@@ -104,9 +104,13 @@ sub-cycles recomputed every step), today's fixed 0.5 us, and a fixed 0.1 h per m
   with every refinement (27 -> 12.5 um; 1.7 cells deep at 7.5 um), unconverged.
 - Cost: the flow's step is cheaper only on coarse meshes: CPU 15 / 40 / 97 / 392 / 1368 s
   against 57 / 61 / 84 / 187 / 431 s at the fixed 0.5 us (179 / 508 / 935 / 2001 / 3190 fluid
-  steps against 880): on fine meshes the gas near the pool moves at 10-20 m/s (what drives it is
-  not traced here), so a Courant number of 0.3 asks for 0.1-0.2 us steps, which the width does
-  not need. No run of the flow's step stopped; the fixed 1.5 us step stopped
+  steps against 880): on fine meshes the gas near the pool moves at 10-20 m/s, so a Courant
+  number of 0.3 asks for 0.1-0.2 us steps, which the width does not need. Where (10 um, at 0.1,
+  0.2 and 0.3 ms): the fastest cells (12-24 m/s, the median gas cell 0.06-0.1 m/s) are gas cells
+  of the powder layer beside the beam holding a trace of metal (alpha 1e-6 to 1e-3) at the
+  melting temperature (1690-2030 K), where grains melt and hand their volume to the continuum:
+  most likely the gas that volume displaces; the liquid pool itself moves at 1.6-3.6 m/s. No
+  run of the flow's step stopped; the fixed 1.5 us step stopped
   at 15 um (a cell at -628 K from the continuum's own solve: the step ignored the Courant limit),
   which an earlier bed had passed (the table of the morning: 107.4 um).
 - An earlier series on another bed (the morning's table: 95.3, 114.0, 107.4, 113.4, 122.6 um at
