@@ -55,36 +55,22 @@ int BoxCellLattice::guess(int axis, double x) const
   return g > 0.0 ? int(std::min(g, double(n_[axis]))) : 0;  // (NaN to 0)
 }
 
-int BoxCellLattice::upper(int axis, double x) const
+int BoxCellLattice::bound(int axis, double x, bool upper) const
 {
   const std::vector<double> &q = planes_[axis];
   const int m = int(q.size());
+  // the planes before the index: q <= x for upper_bound, q < x for lower_bound
+  const auto before = [&](double plane) { return upper ? plane <= x : plane < x; };
   int i = guess(axis, x);
   for (int step = 0; step < 4; ++step) {
-    if (i < m && q[std::size_t(i)] <= x)
+    if (i < m && before(q[std::size_t(i)]))
       ++i;
-    else if (i > 0 && q[std::size_t(i) - 1] > x)
+    else if (i > 0 && !before(q[std::size_t(i) - 1]))
       --i;
     else
       return i;
   }
-  return int(std::upper_bound(q.begin(), q.end(), x) - q.begin());
-}
-
-int BoxCellLattice::lower(int axis, double x) const
-{
-  const std::vector<double> &q = planes_[axis];
-  const int m = int(q.size());
-  int i = guess(axis, x);
-  for (int step = 0; step < 4; ++step) {
-    if (i < m && q[std::size_t(i)] < x)
-      ++i;
-    else if (i > 0 && q[std::size_t(i) - 1] >= x)
-      --i;
-    else
-      return i;
-  }
-  return int(std::lower_bound(q.begin(), q.end(), x) - q.begin());
+  return int((upper ? std::upper_bound(q.begin(), q.end(), x) : std::lower_bound(q.begin(), q.end(), x)) - q.begin());
 }
 
 long BoxCellLattice::find_cell(const Eigen::Vector3d &p) const
@@ -95,7 +81,7 @@ long BoxCellLattice::find_cell(const Eigen::Vector3d &p) const
   for (int a = 0; a < 3; ++a) {
     const std::vector<double> &q = planes_[a];
     if (!(p[a] >= q.front() && p[a] <= q.back())) return -1;
-    const int up = upper(a, p[a]);  // q[up-1] <= p < q[up]
+    const int up = bound(a, p[a], true);  // q[up-1] <= p < q[up]
     last[a] = std::min(up - 1, n_[a] - 1);
     first[a] = q[std::size_t(up) - 1] == p[a] && up >= 2 ? up - 2 : last[a];
   }
@@ -116,8 +102,8 @@ void BoxCellLattice::cells_in_box(const Eigen::Vector3d &lo, const Eigen::Vector
   for (int a = 0; a < 3; ++a) {
     const std::vector<double> &q = planes_[a];
     // intervals [q[i], q[i+1]] with q[i+1] >= lo and q[i] <= hi
-    first[a] = std::max(0, lower(a, lo[a]) - 1);
-    last[a] = std::min(n_[a] - 1, upper(a, hi[a]) - 1);
+    first[a] = std::max(0, bound(a, lo[a], false) - 1);
+    last[a] = std::min(n_[a] - 1, bound(a, hi[a], true) - 1);
     if (!(lo[a] <= q.back() && hi[a] >= q.front()) || first[a] > last[a]) return;
   }
   const std::size_t start = cells.size();

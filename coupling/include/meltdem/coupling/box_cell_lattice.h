@@ -29,9 +29,9 @@ class BoxCellLattice {
   void cells_in_box(const Eigen::Vector3d &lo, const Eigen::Vector3d &hi, std::vector<long> &cells) const;
 
  private:
-  // std::upper_bound / std::lower_bound of x in planes_[axis], as indices
-  int upper(int axis, double x) const;
-  int lower(int axis, double x) const;
+  // std::upper_bound (upper) or std::lower_bound of x in planes_[axis], as an index, found
+  // from the index a uniform spacing predicts (guess)
+  int bound(int axis, double x, bool upper) const;
   int guess(int axis, double x) const;
 
   long slot(int i, int j, int k) const { return slots_[(std::size_t(k) * n_[1] + std::size_t(j)) * n_[0] + i]; }
