@@ -237,12 +237,9 @@ def build(case, variant, cell=None, bed=None, track=None, distribution="overlap"
     fc.transport(case, RHO, MU_MELT / RHO, GAS["rho"], gas_mu / GAS["rho"], SIGMA0)
     fc.gravity(case, (0.0, -G, 0.0))
     cell_fields = fc.CELL_GEOMETRY_FUNCTIONS if refine else ""
-    if courant:
-        fc.control_dict(case, "meltdemFoam", t_end, n_sub * DEM_DT / 4, v["write"], max_co=courant,
-                        max_alpha_co=courant, max_dt=n_sub * DEM_DT, extra=cell_fields)
-    else:
-        fc.control_dict(case, "meltdemFoam", t_end, dt_cap / 4, v["write"], max_co=0.3, max_alpha_co=0.3,
-                        max_dt=dt_cap, extra=cell_fields)
+    max_co, max_dt = (courant, n_sub * DEM_DT) if courant else (0.3, dt_cap)
+    fc.control_dict(case, "meltdemFoam", t_end, max_dt / 4, v["write"], max_co=max_co, max_alpha_co=max_co,
+                    max_dt=max_dt, extra=cell_fields)
     fc.fv_schemes(case)
     fc.fv_solution(case, n_correctors=3)
     cc.exact_solves(case, p_rgh=1e-12, T=1e-14)   # the ledger balances (as tests/coupling)
@@ -347,7 +344,7 @@ def track_geometry(case, meta):
     widths, depths, heights, surface_widths = [], [], [], []
     axis = np.interp(meta["track_z_m"], zc, np.arange(nz))  # fractional index of the track axis
     k0 = int(np.floor(axis))
-    j_top = int(np.nonzero(~(yc > 0))[0][-1])                # the substrate's top cell row
+    j_top = int(np.nonzero(~above)[0][-1])                   # the substrate's top cell row
     for i in np.nonzero(mid)[0]:
         w = 0.0
         for j in range(ny):
