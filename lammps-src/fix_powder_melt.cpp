@@ -159,6 +159,9 @@ FixPowderMelt::FixPowderMelt(LAMMPS *lmp, int narg, char **arg) :
   next_reneighbor = -1;
   for (double &v : vector_all) v = 0.0;
 
+  held = nullptr;
+  held_flag = 0;
+  maxexchange = NCOL + NHELD;  // per atom in Comm::exchange()
   grow_arrays(atom->nmax);
   atom->add_callback(Atom::GROW);
   atom->add_callback(Atom::RESTART);
@@ -172,6 +175,7 @@ FixPowderMelt::~FixPowderMelt()
   atom->delete_callback(id, Atom::GROW);
   atom->delete_callback(id, Atom::RESTART);
   memory->destroy(melt);
+  memory->destroy(held);
   delete[] exchange;
 }
 
@@ -198,7 +202,7 @@ void FixPowderMelt::init()
   for (int i = 0; i < modify->nfix; i++)
     if (utils::strmatch(modify->fix[i]->style, "^gravity")) gravity_fixes.push_back(i);
 
-  if (!provider && comm->me == 0)
+  if (!provider && !held_flag && comm->me == 0)
     error->warning(FLERR, "Fix powder/melt has no fluid (no ambient keyword, no coupling): "
                           "particles are neither heated nor dragged");
 }
@@ -222,6 +226,30 @@ const double *FixPowderMelt::gravity(double *g) const
 void FixPowderMelt::set_fluid_provider(const mc::FluidStateProvider *p)
 {
   provider = p ? p : ambient.get();
+}
+
+void FixPowderMelt::hold_fluid(const std::vector<tagint> &tags, const std::vector<mc::FluidState> &states,
+                               int located_by)
+{
+  if (tags.size() != states.size()) error->one(FLERR, "Fix powder/melt: hold_fluid needs one state per tag");
+  held_flag = 1;
+  for (int i = 0; i < atom->nlocal; i++) {
+    const auto it = std::lower_bound(tags.begin(), tags.end(), atom->tag[i]);
+    const bool found = it != tags.end() && *it == atom->tag[i];
+    held[i][HELD_SET] = found ? 1.0 : 0.0;
+    held[i][HELD_BY] = found ? double(located_by) : -1.0;
+    if (found) mc::pack_fluid_state(states[std::size_t(it - tags.begin())], &held[i][HELD_STATE]);
+  }
+}
+
+bool FixPowderMelt::fluid_at(int i, mc::FluidState &out) const
+{
+  if (held_flag) {
+    if (held[i][HELD_SET] == 0.0) return false;
+    mc::unpack_fluid_state(&held[i][HELD_STATE], out);
+    return true;
+  }
+  return provider && provider->fluid_state(i, atom->x[i], out);
 }
 
 /* ----------------------------------------------------------------------
@@ -329,7 +357,7 @@ void FixPowderMelt::post_force(int /*vflag*/)
     exchange = new StepExchange[nmax_exchange];
   }
   for (int i = 0; i < nlocal; i++) exchange[i] = StepExchange();
-  if (!provider) return;
+  if (!provider && !held_flag) return;
 
   double **x = atom->x;
   double **v = atom->v;
@@ -344,7 +372,7 @@ void FixPowderMelt::post_force(int /*vflag*/)
   mc::FluidState fluid;
   for (int i = 0; i < nlocal; i++) {
     if (!(mask[i] & groupbit) || melt[i][MOLTEN] != 0.0) continue;
-    if (!provider->fluid_state(i, x[i], fluid)) continue;
+    if (!fluid_at(i, fluid)) continue;
     parcel_state(i, fluid);
     mc::ParticleForces F;
     try {
@@ -391,7 +419,6 @@ void FixPowderMelt::post_force(int /*vflag*/)
 void FixPowderMelt::end_of_step()
 {
   const int nlocal = atom->nlocal;
-  double **x = atom->x;
   double **v = atom->v;
   double **f = atom->f;
   double **omega = atom->omega;
@@ -409,10 +436,10 @@ void FixPowderMelt::end_of_step()
 
   int nmolten = 0;
   mc::FluidState fluid;
-  for (int i = 0; i < nlocal && provider; i++) {
+  for (int i = 0; i < nlocal && (provider || held_flag); i++) {
     if (!(mask[i] & groupbit) || melt[i][MOLTEN] != 0.0) continue;
     if (melt[i][MASS0] <= 0.0) melt[i][MASS0] = rmass[i];  // inserted during the run
-    if (!provider->fluid_state(i, x[i], fluid)) continue;
+    if (!fluid_at(i, fluid)) continue;
     parcel_state(i, fluid);
 
     const double d = 2.0 * radius[i], m = rmass[i];
@@ -576,12 +603,14 @@ void FixPowderMelt::restart(char *buf)
 void FixPowderMelt::grow_arrays(int nmax)
 {
   memory->grow(melt, nmax, NCOL, "powder/melt:melt");
+  memory->grow(held, nmax, NHELD, "powder/melt:held");
   array_atom = melt;
 }
 
 void FixPowderMelt::copy_arrays(int i, int j, int /*delflag*/)
 {
   for (int k = 0; k < NCOL; k++) melt[j][k] = melt[i][k];
+  for (int k = 0; k < NHELD; k++) held[j][k] = held[i][k];
 }
 
 // new atoms start at temp T0; the initial mass is taken at the first step, after the
@@ -594,18 +623,22 @@ void FixPowderMelt::set_arrays(int i)
   melt[i][MASS0] = 0.0;
   melt[i][MOLTEN] = 0.0;
   for (int k = S_OFFSET; k < NCOL; k++) melt[i][k] = 0.0;
+  held[i][HELD_SET] = 0.0;
+  held[i][HELD_BY] = -1.0;
 }
 
 int FixPowderMelt::pack_exchange(int i, double *buf)
 {
   for (int k = 0; k < NCOL; k++) buf[k] = melt[i][k];
-  return NCOL;
+  for (int k = 0; k < NHELD; k++) buf[NCOL + k] = held[i][k];
+  return NCOL + NHELD;
 }
 
 int FixPowderMelt::unpack_exchange(int nlocal, double *buf)
 {
   for (int k = 0; k < NCOL; k++) melt[nlocal][k] = buf[k];
-  return NCOL;
+  for (int k = 0; k < NHELD; k++) held[nlocal][k] = buf[NCOL + k];
+  return NCOL + NHELD;
 }
 
 int FixPowderMelt::pack_restart(int i, double *buf)
@@ -639,7 +672,7 @@ int FixPowderMelt::maxsize_restart()
 
 double FixPowderMelt::memory_usage()
 {
-  return (double)atom->nmax * NCOL * sizeof(double) + (double)nmax_exchange * sizeof(StepExchange);
+  return (double)atom->nmax * (NCOL + NHELD) * sizeof(double) + (double)nmax_exchange * sizeof(StepExchange);
 }
 
 /* ----------------------------------------------------------------------
@@ -666,20 +699,38 @@ mc::ExchangeRecord FixPowderMelt::record(int i) const
   r.conductance = molten ? 0.0 : melt[i][COND];
   r.heat_capacity = r.mass * mat.cp;
   r.heat_owed = melt[i][OWED];
+  if (held_flag && held[i][HELD_SET] != 0.0) {
+    r.located_by = int(held[i][HELD_BY]);
+    r.light = held[i][HELD_STATE + mc::kFluidStateHeatSource];
+  }
   return r;
 }
 
 void FixPowderMelt::interval_records(std::vector<mc::ExchangeRecord> &out) const
 {
-  out.clear();
-  out.reserve(finished.size() + std::size_t(atom->nlocal));
-  out.insert(out.end(), finished.begin(), finished.end());
-  for (int i = 0; i < atom->nlocal; i++)
-    if (atom->mask[i] & groupbit) out.push_back(record(i));
+  records(out, true);
+}
+
+void FixPowderMelt::current_records(std::vector<mc::ExchangeRecord> &out) const
+{
+  records(out, false);
+}
+
+void FixPowderMelt::records(std::vector<mc::ExchangeRecord> &out, bool with_finished) const
+{
   // by ID: the coupling's sums then do not depend on LAMMPS's atom order, which a sort or
-  // a restart changes (a resumed run equals the uninterrupted one bit for bit)
-  std::sort(out.begin(), out.end(),
-            [](const mc::ExchangeRecord &a, const mc::ExchangeRecord &b) { return a.id < b.id; });
+  // a restart changes (a resumed run equals the uninterrupted one bit for bit). The tags are
+  // sorted, then the records made in that order (-1 - k: finished record k)
+  std::vector<std::pair<tagint, int>> order;
+  order.reserve(finished.size() + std::size_t(atom->nlocal));
+  for (std::size_t k = 0; with_finished && k < finished.size(); ++k)
+    order.emplace_back(tagint(finished[k].id), -1 - int(k));
+  for (int i = 0; i < atom->nlocal; i++)
+    if (atom->mask[i] & groupbit) order.emplace_back(atom->tag[i], i);
+  std::sort(order.begin(), order.end());
+  out.clear();
+  out.reserve(order.size());
+  for (const auto &o : order) out.push_back(o.second >= 0 ? record(o.second) : finished[std::size_t(-1 - o.second)]);
 }
 
 void FixPowderMelt::reset_interval()

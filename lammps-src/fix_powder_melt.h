@@ -60,6 +60,12 @@ class FixPowderMelt : public Fix {
   // The coupling replaces 'ambient' by the continuum's local fields through this hook
   // (nullptr restores ambient). The provider must outlive its use by this fix.
   void set_fluid_provider(const meltdem::coupling::FluidStateProvider *provider);
+  // The coupling's fluid for one interval: the local particles with these tags (ascending)
+  // see these states until the next call, also after moving to another rank (the state
+  // travels with the atom), and their records name located_by as the rank that gave it.
+  // Particles not listed see no fluid. From the first call on the fix reads no provider.
+  void hold_fluid(const std::vector<tagint> &tags, const std::vector<meltdem::coupling::FluidState> &states,
+                  int located_by);
 
   // What particle i (local index) handed over / absorbed during the last step; the
   // coupling distributes these to cells. Valid after end_of_step until the next step.
@@ -78,6 +84,9 @@ class FixPowderMelt : public Fix {
   // deleted as fully molten during the interval (mass 0). Records carry the particle's
   // state now (position, radius, velocity, T, h; mass 0 once fully molten).
   void interval_records(std::vector<meltdem::coupling::ExchangeRecord> &out) const;
+  // the same for the particles present now only (without those deleted this interval): one
+  // per tag (a tag LAMMPS gave again to a new particle is not also a deleted one's)
+  void current_records(std::vector<meltdem::coupling::ExchangeRecord> &out) const;
   void reset_interval();
   // implicit heat exchange: the heat [J] the continuum's energy solve gave each listed local
   // particle (by tag), taken at the start of the next interval
@@ -137,6 +146,7 @@ class FixPowderMelt : public Fix {
   };
   std::vector<meltdem::coupling::ExchangeRecord> finished;  // deleted this interval
   meltdem::coupling::ExchangeRecord record(int i) const;
+  void records(std::vector<meltdem::coupling::ExchangeRecord> &out, bool with_finished) const;
   meltdem::coupling::MeltMaterial mat;
   meltdem::coupling::DragModel drag_model;
   double T0;
@@ -146,6 +156,14 @@ class FixPowderMelt : public Fix {
   int in_setup;
   int solid_flag;  // solid_metal keyword: the continuum's solid metal is a wall
   double solid_estar, solid_alpha;
+
+  // per-atom fluid held for the interval (hold_fluid): HELD_SET 1 when held, HELD_BY the rank
+  // that located it, then the packed FluidState
+  enum { HELD_SET, HELD_BY, HELD_STATE, NHELD = HELD_STATE + meltdem::coupling::kFluidStateDoubles };
+  double **held;
+  int held_flag;
+  // the fluid particle i sees this step (held or from the provider); false: none
+  bool fluid_at(int i, meltdem::coupling::FluidState &out) const;
 
   double **melt;           // per-atom state, columns above
   StepExchange *exchange;  // per-atom exchange of the last step

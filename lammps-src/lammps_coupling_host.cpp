@@ -34,23 +34,6 @@ namespace meltdem {
 
 namespace {
 
-// the fluid of each particle by tag, fixed over one coupling interval
-class TagFluidProvider : public mc::FluidStateProvider {
- public:
-  explicit TagFluidProvider(LAMMPS *lmp) : lmp_(lmp) {}
-  bool fluid_state(int index, const double *, mc::FluidState &out) const override
-  {
-    const auto it = fluid.find(std::int64_t(lmp_->atom->tag[index]));
-    if (it == fluid.end()) return false;
-    out = it->second;
-    return true;
-  }
-  std::unordered_map<std::int64_t, mc::FluidState> fluid;
-
- private:
-  LAMMPS *lmp_;
-};
-
 // LAMMPS's screen once the input is read: the per-run output (setup, thermo) goes to the log
 // only, but ERROR and WARNING lines (and the 'Last command' after an error) still reach stdout,
 // on every rank: after a LAMMPS error inside the coupled run nothing else says why the job
@@ -93,7 +76,6 @@ FILE *errors_only_screen()
 struct LammpsCouplingHost::Impl {
   LAMMPS *lmp = nullptr;
   FixPowderMelt *melt = nullptr;
-  std::unique_ptr<TagFluidProvider> provider;
   bool needs_setup = true;
   int me = 0;
   // the input's commands (empty, with the reason, when it cannot be replayed), its output
@@ -171,8 +153,7 @@ LammpsCouplingHost::LammpsCouplingHost(MPI_Comm comm, const std::string &input_f
     throw LammpsSetupError("the LAMMPS input " + input_file + " defines " + std::to_string(nmelt) +
                            " fix powder/melt; the coupling needs exactly one (its cp, Tmelt and latent are "
                            "the particles' material)");
-  impl_->provider = std::make_unique<TagFluidProvider>(lmp);
-  impl_->melt->set_fluid_provider(impl_->provider.get());
+  impl_->melt->hold_fluid({}, {}, -1);  // the coupling hands each interval's fluid in
   if (impl_->not_replayable.empty()) {
     impl_->outputs = output_files(lmp, impl_->commands);
     lmp->input->one("fix meltdem_outputs all powder/checkpoint 0 NULL");
@@ -283,12 +264,13 @@ bool LammpsCouplingHost::solid_metal_wall() const
 
 void LammpsCouplingHost::local_particles(std::vector<mc::ExchangeRecord> &out) const
 {
-  impl_->melt->interval_records(out);
+  impl_->melt->current_records(out);
 }
 
-void LammpsCouplingHost::set_fluid(std::unordered_map<std::int64_t, mc::FluidState> fluid)
+void LammpsCouplingHost::set_fluid(const std::vector<std::int64_t> &ids, const std::vector<mc::FluidState> &states,
+                                   int located_by)
 {
-  impl_->provider->fluid = std::move(fluid);
+  impl_->melt->hold_fluid(std::vector<tagint>(ids.begin(), ids.end()), states, located_by);
 }
 
 void LammpsCouplingHost::set_heat_owed(const std::vector<std::int64_t> &tags, const std::vector<double> &heat)

@@ -19,7 +19,6 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
-#include <unordered_map>
 #include <vector>
 
 namespace meltdem {
@@ -74,9 +73,11 @@ class LammpsCouplingHost {
   // unless an interval is open)
   void local_particles(std::vector<coupling::ExchangeRecord> &out) const;
 
-  // the fluid each particle sees over the next advance(); particles without an entry see
-  // no fluid (they neither heat nor feel drag). Keys are particle tags.
-  void set_fluid(std::unordered_map<std::int64_t, coupling::FluidState> fluid);
+  // the fluid each of this rank's particles sees over the next advance() (ids: tags in
+  // ascending order, states alike); particles without an entry see no fluid (they neither
+  // heat nor feel drag). The state moves with a particle that changes rank, and its record
+  // names located_by (the coupling's rank that located it) for what it took.
+  void set_fluid(const std::vector<std::int64_t> &ids, const std::vector<coupling::FluidState> &states, int located_by);
 
   // the heat [J] the continuum's implicit energy solve gave each of this rank's listed
   // particles (tags from the records of the last advance()); they take it in the next one

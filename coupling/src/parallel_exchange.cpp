@@ -14,22 +14,22 @@ namespace meltdem::coupling {
 
 namespace {
 
-// Gather `per` doubles per item from every rank, in rank order.
-void allgather_doubles(const std::vector<double> &local, int per, MPI_Comm comm, std::vector<double> &all,
-                       std::vector<int> &counts, std::vector<int> &displs)
+constexpr int kTag = 7401;
+constexpr std::size_t kNone = std::numeric_limits<std::size_t>::max();
+
+// does the sphere (c, r) reach the box stored at b (lo x, y, z, hi x, y, z)?
+bool sphere_reaches_box(const Eigen::Vector3d &c, double r, const double *b)
 {
-  int size = 1;
-  MPI_Comm_size(comm, &size);
-  const int n = int(local.size()) / per;
-  counts.assign(size, 0);
-  MPI_Allgather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, comm);
-  displs.assign(size, 0);
-  for (int r = 1; r < size; ++r) displs[r] = displs[r - 1] + counts[r - 1];
-  const int total = displs[size - 1] + counts[size - 1];
-  std::vector<int> c(size), d(size);
-  for (int r = 0; r < size; ++r) c[r] = counts[r] * per, d[r] = displs[r] * per;
-  all.assign(std::size_t(total) * per, 0.0);
-  MPI_Allgatherv(local.data(), n * per, MPI_DOUBLE, all.data(), c.data(), d.data(), MPI_DOUBLE, comm);
+  if (!(b[0] <= b[3])) return false;  // a rank without cells
+  double d2 = 0.0;
+  for (int a = 0; a < 3; ++a) {
+    const double lo = b[a] - r, hi = b[3 + a] + r;
+    if (c[a] < lo || c[a] > hi) return false;
+    const double below = b[a] - c[a], above = c[a] - b[3 + a];
+    const double out = std::max({below, above, 0.0});
+    d2 += out * out;
+  }
+  return d2 <= r * r;
 }
 
 }  // namespace
@@ -41,96 +41,227 @@ ParallelExchange::ParallelExchange(const DistributionMesh &local_mesh, Distribut
   MPI_Comm_size(comm_, &size_);
 }
 
+void ParallelExchange::exchange_rows(const std::vector<std::size_t> &send_rows, const std::vector<double> &send,
+                                     int per, const std::vector<std::size_t> &recv_rows, std::vector<double> &recv,
+                                     bool copy_own) const
+{
+  std::vector<MPI_Request> requests;
+  requests.reserve(2 * std::size_t(size_));
+  for (int r = 0; r < size_; ++r) {
+    const std::size_t n = recv_rows[r + 1] - recv_rows[r];
+    if (!n || r == rank_) continue;
+    requests.emplace_back();
+    MPI_Irecv(recv.data() + recv_rows[r] * per, int(n * per), MPI_DOUBLE, r, kTag, comm_, &requests.back());
+    traffic_.messages_received += 1;
+    traffic_.bytes_received += std::int64_t(n * per * sizeof(double));
+  }
+  for (int r = 0; r < size_; ++r) {
+    const std::size_t n = send_rows[r + 1] - send_rows[r];
+    if (!n) continue;
+    if (r == rank_) {
+      if (copy_own)
+        std::copy(send.begin() + std::ptrdiff_t(send_rows[r] * per),
+                  send.begin() + std::ptrdiff_t(send_rows[r + 1] * per),
+                  recv.begin() + std::ptrdiff_t(recv_rows[r] * per));
+      continue;
+    }
+    requests.emplace_back();
+    MPI_Isend(send.data() + send_rows[r] * per, int(n * per), MPI_DOUBLE, r, kTag, comm_, &requests.back());
+    traffic_.messages_sent += 1;
+    traffic_.bytes_sent += std::int64_t(n * per * sizeof(double));
+  }
+  MPI_Waitall(int(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
+}
+
+void ParallelExchange::route(const std::vector<ParticleShape> &local, double grow, Routing &routing,
+                             std::vector<ParticleShape> &visitors) const
+{
+  const std::vector<double> &boxes = boxes_;
+  // the ranks each particle reaches, in rank order (a box grown by a relative tolerance, so
+  // that a sphere touching a processor boundary goes to both sides)
+  std::vector<std::vector<std::size_t>> to(static_cast<std::size_t>(size_));
+  for (std::size_t i = 0; i < local.size(); ++i) {
+    const double reach = local[i].radius + grow;
+    const double tol = 1e-12 * std::max(reach, local[i].x.cwiseAbs().maxCoeff());
+    for (int r = 0; r < size_; ++r)
+      if (sphere_reaches_box(local[i].x, reach + tol, &boxes[std::size_t(6 * r)])) to[r].push_back(i);
+  }
+  routing.send_from.assign(std::size_t(size_) + 1, 0);
+  routing.send_index.clear();
+  std::vector<int> send_counts(static_cast<std::size_t>(size_)), recv_counts(static_cast<std::size_t>(size_));
+  for (int r = 0; r < size_; ++r) {
+    routing.send_index.insert(routing.send_index.end(), to[r].begin(), to[r].end());
+    routing.send_from[r + 1] = routing.send_index.size();
+    send_counts[r] = int(to[r].size());
+  }
+  MPI_Alltoall(send_counts.data(), 1, MPI_INT, recv_counts.data(), 1, MPI_INT, comm_);
+  routing.recv_from.assign(std::size_t(size_) + 1, 0);
+  for (int r = 0; r < size_; ++r) routing.recv_from[r + 1] = routing.recv_from[r] + std::size_t(recv_counts[r]);
+
+  constexpr int kShape = 5;
+  std::vector<double> send(kShape * routing.send_index.size());
+  for (std::size_t j = 0; j < routing.send_index.size(); ++j) {
+    const ParticleShape &p = local[routing.send_index[j]];
+    double *q = &send[kShape * j];
+    q[0] = p.x.x(), q[1] = p.x.y(), q[2] = p.x.z(), q[3] = p.radius, q[4] = double(p.id);
+  }
+  std::vector<double> recv(kShape * routing.recv_from[size_]);
+  exchange_rows(routing.send_from, send, kShape, routing.recv_from, recv, true);
+  visitors.resize(routing.recv_from[size_]);
+  for (std::size_t v = 0; v < visitors.size(); ++v) {
+    const double *q = &recv[kShape * v];
+    visitors[v] = {Eigen::Vector3d(q[0], q[1], q[2]), q[3], std::int64_t(q[4])};
+  }
+}
+
+void ParallelExchange::forward(const Routing &routing, const std::vector<double> &per_local, int per,
+                               std::vector<double> &per_visitor) const
+{
+  const std::size_t p = std::size_t(per);
+  per_visitor.resize(p * routing.recv_from[size_]);
+  // this rank's own particles straight to their visitor rows, the others' through messages
+  const std::size_t self0 = routing.send_from[rank_], self1 = routing.send_from[rank_ + 1];
+  for (std::size_t j = self0; j < self1; ++j)
+    std::copy_n(&per_local[p * routing.send_index[j]], per, &per_visitor[p * (routing.recv_from[rank_] + j - self0)]);
+  if (size_ == 1) return;
+  std::vector<double> send(p * routing.send_index.size());
+  for (std::size_t j = 0; j < routing.send_index.size(); ++j)
+    if (j < self0 || j >= self1) std::copy_n(&per_local[p * routing.send_index[j]], per, &send[p * j]);
+  exchange_rows(routing.send_from, send, per, routing.recv_from, per_visitor, false);
+}
+
+void ParallelExchange::backward(const Routing &routing, const std::vector<double> &per_visitor, int per,
+                                std::vector<double> &per_sent) const
+{
+  per_sent.resize(std::size_t(per) * routing.send_index.size());
+  exchange_rows(routing.recv_from, per_visitor, per, routing.send_from, per_sent, true);
+}
+
+void ParallelExchange::sum_backward(const Routing &routing, const std::vector<double> &per_visitor, int per,
+                                    std::vector<double> &per_local) const
+{
+  const std::size_t p = std::size_t(per);
+  std::vector<double> rows;
+  if (size_ > 1) {
+    rows.resize(p * routing.send_index.size());
+    exchange_rows(routing.recv_from, per_visitor, per, routing.send_from, rows, false);
+  }
+  per_local.assign(p * local_.size(), 0.0);
+  const std::size_t self0 = routing.send_from[rank_], self1 = routing.send_from[rank_ + 1];
+  for (std::size_t j = 0; j < routing.send_index.size(); ++j) {  // rank order
+    const double *q = j >= self0 && j < self1 ? &per_visitor[p * (routing.recv_from[rank_] + j - self0)] : &rows[p * j];
+    double *o = &per_local[p * routing.send_index[j]];
+    for (std::size_t c = 0; c < p; ++c) o[c] += q[c];
+  }
+}
+
 void ParallelExchange::locate(const std::vector<ParticleShape> &local)
 {
-  std::vector<double> mine;
-  mine.reserve(4 * local.size());
-  for (const ParticleShape &p : local) {
+  for (const ParticleShape &p : local)
     if (!(p.radius > 0.0) || !std::isfinite(p.radius) || !p.x.allFinite())
       throw std::invalid_argument("particle exchange: radius " + std::to_string(p.radius) +
                                   " or position not finite/positive");
-    mine.insert(mine.end(), {p.x.x(), p.x.y(), p.x.z(), p.radius, double(p.id)});
-  }
-  std::vector<double> all;
-  allgather_doubles(mine, 5, comm_, all, counts_, displs_);
-  const std::size_t n = all.size() / 5;
-  offset_ = std::size_t(displs_[rank_]);
-  all_.resize(n);
-  for (std::size_t g = 0; g < n; ++g)
-    all_[g] = {Eigen::Vector3d(all[5 * g], all[5 * g + 1], all[5 * g + 2]), all[5 * g + 3],
-               std::int64_t(all[5 * g + 4])};
+  local_ = local;
+  std::int64_t n_local = std::int64_t(local_.size());
+  MPI_Allreduce(&n_local, &global_count_, 1, MPI_INT64_T, MPI_SUM, comm_);
+  // every rank's cell box (6 doubles per rank: the routing table, not the particles), as the
+  // mesh is now (it may have changed since the last locate)
+  double mine[6] = {1.0, 1.0, 1.0, -1.0, -1.0, -1.0};
+  Eigen::Vector3d box_lo, box_hi;
+  if (mesh_.bounds(box_lo, box_hi))
+    for (int a = 0; a < 3; ++a) mine[a] = box_lo[a], mine[3 + a] = box_hi[a];
+  boxes_.assign(std::size_t(6 * size_), 0.0);
+  MPI_Allgather(mine, 6, MPI_DOUBLE, boxes_.data(), 6, MPI_DOUBLE, comm_);
+  route(local_, 0.0, routing_, visitors_);
+  const std::size_t nv = visitors_.size(), nl = local_.size();
+  traffic_.located += std::int64_t(nl);
+  traffic_.visitors += std::int64_t(nv);
+  visitor_of_local_.assign(nl, kNone);
+  for (std::size_t j = routing_.send_from[rank_]; j < routing_.send_from[rank_ + 1]; ++j)
+    visitor_of_local_[routing_.send_index[j]] = routing_.recv_from[rank_] + (j - routing_.send_from[rank_]);
 
-  // the cell holding each centre: the lowest rank that finds it owns it
-  std::vector<long> home(n, -1);
-  std::vector<int> owner(n, INT_MAX);
-  for (std::size_t g = 0; g < n; ++g) {
-    home[g] = mesh_.find_cell(all_[g].x);
-    if (home[g] >= 0) owner[g] = rank_;
-  }
-  if (n) MPI_Allreduce(MPI_IN_PLACE, owner.data(), int(n), MPI_INT, MPI_MIN, comm_);
-  for (std::size_t g = 0; g < n; ++g)
-    if (owner[g] != rank_) home[g] = -1;
-
-  // the owner's home-cell box, for the neighbours model (others see +inf/-inf)
-  std::vector<double> hbox;
-  if (model_ == DistributionModel::Neighbours && n) {
-    const double inf = std::numeric_limits<double>::infinity();
-    hbox.assign(6 * n, 0.0);
-    for (std::size_t g = 0; g < n; ++g) {
-      Eigen::Vector3d lo(inf, inf, inf), hi(-inf, -inf, -inf);
-      if (home[g] >= 0) mesh_.cell_bounds(home[g], lo, hi);
-      for (int a = 0; a < 3; ++a) hbox[6 * g + a] = -lo[a], hbox[6 * g + 3 + a] = hi[a];
+  // the cell holding each centre: the lowest rank that finds it owns it; for the neighbours
+  // model the owner's home-cell box goes with it
+  const bool with_box = model_ == DistributionModel::Neighbours;
+  const int kFound = with_box ? 7 : 1;
+  std::vector<long> home(nv, -1);
+  std::vector<double> found(std::size_t(kFound) * nv, 0.0);
+  for (std::size_t v = 0; v < nv; ++v) {
+    home[v] = mesh_.find_cell(visitors_[v].x);
+    if (home[v] < 0) continue;
+    double *q = &found[std::size_t(kFound) * v];
+    q[0] = 1.0;
+    if (with_box) {
+      Eigen::Vector3d lo, hi;
+      mesh_.cell_bounds(home[v], lo, hi);
+      for (int a = 0; a < 3; ++a) q[1 + a] = lo[a], q[4 + a] = hi[a];
     }
-    MPI_Allreduce(MPI_IN_PLACE, hbox.data(), int(6 * n), MPI_DOUBLE, MPI_MAX, comm_);
   }
+  std::vector<double> rows;
+  backward(routing_, found, kFound, rows);
+  std::vector<double> owner(std::size_t(kFound) * nl, 0.0);
+  for (std::size_t i = 0; i < nl; ++i) owner[std::size_t(kFound) * i] = -1.0;
+  for (int r = 0; r < size_; ++r)
+    for (std::size_t j = routing_.send_from[r]; j < routing_.send_from[r + 1]; ++j) {
+      double *o = &owner[std::size_t(kFound) * routing_.send_index[j]];
+      const double *q = &rows[std::size_t(kFound) * j];
+      if (q[0] == 0.0 || o[0] >= 0.0) continue;
+      o[0] = double(r);
+      std::copy_n(q + 1, kFound - 1, o + 1);
+    }
+  std::vector<double> owner_of_visitor;
+  forward(routing_, owner, kFound, owner_of_visitor);
 
   // raw weights over this rank's cells
-  start_.assign(n + 1, 0);
+  start_.assign(nv + 1, 0);
   cells_.clear();
   weights_.clear();
   std::vector<CellWeight> raw;
   Eigen::Vector3d hlo = Eigen::Vector3d::Zero(), hhi = Eigen::Vector3d::Zero();
-  for (std::size_t g = 0; g < n; ++g) {
-    start_[g] = cells_.size();
-    if (owner[g] == INT_MAX) continue;  // outside the mesh
-    if (!hbox.empty()) {
-      hlo = Eigen::Vector3d(-hbox[6 * g], -hbox[6 * g + 1], -hbox[6 * g + 2]);
-      hhi = Eigen::Vector3d(hbox[6 * g + 3], hbox[6 * g + 4], hbox[6 * g + 5]);
-    }
+  for (std::size_t v = 0; v < nv; ++v) {
+    start_[v] = cells_.size();
+    const double *o = &owner_of_visitor[std::size_t(kFound) * v];
+    if (o[0] < 0.0) continue;  // outside the mesh
+    if (with_box) hlo = Eigen::Vector3d(o[1], o[2], o[3]), hhi = Eigen::Vector3d(o[4], o[5], o[6]);
     raw.clear();
-    append_raw_weights(mesh_, model_, all_[g].x, all_[g].radius, home[g], hlo, hhi, raw);
+    append_raw_weights(mesh_, model_, visitors_[v].x, visitors_[v].radius, int(o[0]) == rank_ ? home[v] : -1, hlo, hhi,
+                       raw);
     for (const CellWeight &w : raw) cells_.push_back(w.cell), weights_.push_back(w.weight);
   }
-  start_[n] = cells_.size();
+  start_[nv] = cells_.size();
+  traffic_.weights += std::int64_t(cells_.size());
 
-  // global normalisation: compensated local sums, then summed over the ranks
-  std::vector<double> sums(2 * n, 0.0);
-  for (std::size_t g = 0; g < n; ++g) {
+  // normalisation: compensated sums on each rank, summed over the ranks in rank order
+  std::vector<double> sums(2 * nv, 0.0);
+  for (std::size_t v = 0; v < nv; ++v) {
     ExactSum s;
-    for (std::size_t k = start_[g]; k < start_[g + 1]; ++k) s.add(weights_[k]);
-    sums[g] = s.hi(), sums[n + g] = s.lo();
+    for (std::size_t k = start_[v]; k < start_[v + 1]; ++k) s.add(weights_[k]);
+    sums[2 * v] = s.hi(), sums[2 * v + 1] = s.lo();
   }
-  if (n) MPI_Allreduce(MPI_IN_PLACE, sums.data(), int(2 * n), MPI_DOUBLE, MPI_SUM, comm_);
-  inside_.assign(n, 0);
-  for (std::size_t g = 0; g < n; ++g) {
-    const double total = sums[g] + sums[n + g];
-    if (!(total > 0.0)) {
-      for (std::size_t k = start_[g]; k < start_[g + 1]; ++k) weights_[k] = 0.0;
-      continue;
-    }
-    inside_[g] = 1;
-    for (std::size_t k = start_[g]; k < start_[g + 1]; ++k) weights_[k] /= total;
+  std::vector<double> local_sums;
+  sum_backward(routing_, sums, 2, local_sums);
+  std::vector<double> total(nl, 0.0);
+  inside_.assign(nl, 0);
+  for (std::size_t i = 0; i < nl; ++i) {
+    total[i] = local_sums[2 * i] + local_sums[2 * i + 1];
+    inside_[i] = total[i] > 0.0;
+  }
+  std::vector<double> total_of_visitor;
+  forward(routing_, total, 1, total_of_visitor);
+  for (std::size_t v = 0; v < nv; ++v) {
+    const double t = total_of_visitor[v];
+    for (std::size_t k = start_[v]; k < start_[v + 1]; ++k) weights_[k] = t > 0.0 ? weights_[k] / t : 0.0;
   }
 
   // each particle's share of its cells, by its conductance there: its weight in the cell times
   // its size (G ~ k Nu d), so a shrinking remnant keeps enough of a cell to melt away (every
-  // rank holds every particle's weights over its own cells, so the per-cell sums are complete)
+  // particle with weights in this rank's cells is a visitor here, so the per-cell sums are complete)
   share_.assign(cells_.size(), 0.0);
   const long ncells = cells_.empty() ? 0 : *std::max_element(cells_.begin(), cells_.end()) + 1;
   if (claimed_.size() < std::size_t(ncells)) claimed_.resize(std::size_t(ncells), 0.0);  // zero between calls
-  for (std::size_t g = 0; g < n; ++g)
-    for (std::size_t k = start_[g]; k < start_[g + 1]; ++k) {
-      share_[k] = weights_[k] * all_[g].radius;
+  for (std::size_t v = 0; v < nv; ++v)
+    for (std::size_t k = start_[v]; k < start_[v + 1]; ++k) {
+      share_[k] = weights_[k] * visitors_[v].radius;
       claimed_[std::size_t(cells_[k])] += share_[k];
     }
   for (std::size_t k = 0; k < cells_.size(); ++k)
@@ -138,43 +269,35 @@ void ParallelExchange::locate(const std::vector<ParticleShape> &local)
   for (const long c : cells_) claimed_[std::size_t(c)] = 0.0;
 }
 
-void ParallelExchange::sample_global(const CellFluidFields &f, std::vector<SampledFluid> &out) const
+void ParallelExchange::sample(const CellFluidFields &f, std::vector<SampledFluid> &out) const
 {
   if (!f.T || !f.k || !f.rho || !f.mu || !f.cp || !f.U)
     throw std::invalid_argument("particle exchange: T, k, rho, mu, cp and U are required to sample the fluid");
   // sample_fluid's sums over this rank's cells, summed over the ranks, then finished
-  const std::size_t n = all_.size();
-  std::vector<double> partial(kSampleSums * n, 0.0);
-  for (std::size_t g = 0; g < n; ++g)
-    for (std::size_t k = start_[g]; k < start_[g + 1]; ++k)
-      add_cell_to_sample(f, cells_[k], weights_[k], share_[k], &partial[kSampleSums * g]);
-  if (n) MPI_Allreduce(MPI_IN_PLACE, partial.data(), int(kSampleSums * n), MPI_DOUBLE, MPI_SUM, comm_);
-  out.assign(n, SampledFluid());
-  for (std::size_t g = 0; g < n; ++g)
-    if (inside_[g]) out[g] = finish_sample(&partial[kSampleSums * g]);
-}
-
-void ParallelExchange::sample(const CellFluidFields &f, std::vector<SampledFluid> &local_out) const
-{
-  std::vector<SampledFluid> all;
-  sample_global(f, all);
-  local_out.assign(all.begin() + std::ptrdiff_t(offset_), all.begin() + std::ptrdiff_t(offset_) + counts_[rank_]);
+  const std::size_t nv = visitors_.size();
+  std::vector<double> partial(kSampleSums * nv, 0.0);
+  for (std::size_t v = 0; v < nv; ++v)
+    for (std::size_t k = start_[v]; k < start_[v + 1]; ++k)
+      add_cell_to_sample(f, cells_[k], weights_[k], share_[k], &partial[kSampleSums * v]);
+  std::vector<double> sums;
+  sum_backward(routing_, partial, kSampleSums, sums);
+  out.resize(local_.size());
+  for (std::size_t i = 0; i < local_.size(); ++i)
+    out[i] = inside_[i] ? finish_sample(&sums[kSampleSums * i]) : SampledFluid();
 }
 
 void ParallelExchange::deposit(const std::vector<Amounts> &local_amounts, std::vector<Amounts> &cell_amounts) const
 {
-  if (local_amounts.size() != std::size_t(counts_[rank_]))
+  if (local_amounts.size() != local_.size())
     throw std::invalid_argument("particle exchange: deposit() needs one amount per located local particle");
-  std::vector<double> mine;
-  mine.reserve(kComponents * local_amounts.size());
-  for (const Amounts &a : local_amounts) mine.insert(mine.end(), a.begin(), a.end());
-  std::vector<double> all;
-  std::vector<int> counts, displs;
-  allgather_doubles(mine, kComponents, comm_, all, counts, displs);
-  for (std::size_t g = 0; g < all_.size(); ++g) {
-    if (!inside_[g]) continue;
-    const double *a = &all[kComponents * g];
-    for (std::size_t k = start_[g]; k < start_[g + 1]; ++k) {
+  std::vector<double> mine(kComponents * local_.size(), 0.0);
+  for (std::size_t i = 0; i < local_.size(); ++i)
+    if (inside_[i]) std::copy(local_amounts[i].begin(), local_amounts[i].end(), &mine[kComponents * i]);
+  std::vector<double> amounts;
+  forward(routing_, mine, kComponents, amounts);
+  for (std::size_t v = 0; v < visitors_.size(); ++v) {
+    const double *a = &amounts[kComponents * v];
+    for (std::size_t k = start_[v]; k < start_[v + 1]; ++k) {
       Amounts &c = cell_amounts.at(std::size_t(cells_[k]));
       for (int q = 0; q < kComponents; ++q) c[q] += weights_[k] * a[q];
     }
@@ -183,79 +306,105 @@ void ParallelExchange::deposit(const std::vector<Amounts> &local_amounts, std::v
 
 void ParallelExchange::weighted_mean(const double *cell_values, std::vector<double> &local_out) const
 {
-  const std::size_t n = all_.size();
-  std::vector<double> sums(n, 0.0);
-  for (std::size_t g = 0; g < n; ++g)
-    for (std::size_t k = start_[g]; k < start_[g + 1]; ++k) sums[g] += weights_[k] * cell_values[cells_[k]];
-  if (n) MPI_Allreduce(MPI_IN_PLACE, sums.data(), int(n), MPI_DOUBLE, MPI_SUM, comm_);
-  local_out.assign(sums.begin() + std::ptrdiff_t(offset_), sums.begin() + std::ptrdiff_t(offset_) + counts_[rank_]);
+  std::vector<double> partial(visitors_.size(), 0.0);
+  for (std::size_t v = 0; v < visitors_.size(); ++v)
+    for (std::size_t k = start_[v]; k < start_[v + 1]; ++k) partial[v] += weights_[k] * cell_values[cells_[k]];
+  sum_backward(routing_, partial, 1, local_out);
 }
 
 void ParallelExchange::deposit_taken(const std::vector<std::int64_t> &ids, const std::vector<double> &heat,
                                      const std::vector<Eigen::Vector3d> &impulse, const std::vector<double> &particle_T,
                                      const CellFluidFields &f, std::vector<Amounts> &cell_amounts) const
 {
-  const std::size_t nmine = ids.size();
-  if (heat.size() != nmine || impulse.size() != nmine || particle_T.size() != nmine)
+  deposit_taken(ids, std::vector<int>(ids.size(), rank_), heat, impulse, particle_T, f, cell_amounts);
+}
+
+void ParallelExchange::deposit_taken(const std::vector<std::int64_t> &ids, const std::vector<int> &located_by,
+                                     const std::vector<double> &heat, const std::vector<Eigen::Vector3d> &impulse,
+                                     const std::vector<double> &particle_T, const CellFluidFields &f,
+                                     std::vector<Amounts> &cell_amounts) const
+{
+  const std::size_t nreports = ids.size();
+  if (heat.size() != nreports || impulse.size() != nreports || particle_T.size() != nreports ||
+      located_by.size() != nreports)
     throw std::invalid_argument(
-        "particle exchange: deposit_taken() needs one heat, impulse and temperature per particle id");
+        "particle exchange: deposit_taken() needs one locating rank, heat, impulse and temperature per particle id");
   if (!f.rho || !f.cp || !f.T) throw std::invalid_argument("particle exchange: deposit_taken() needs T, rho and cp");
-  // any rank may report any located particle (it may have moved to another DEM rank since
-  // it was located): gather (id, heat, impulse, T) and find each located particle's entry
+  // each report goes to the rank that located the particle (it may have moved to another DEM
+  // rank since): (id, heat, impulse, T) by point-to-point messages
   constexpr int kIn = 6, kOut = 5;
-  std::vector<double> mine;
-  mine.reserve(kIn * nmine);
-  for (std::size_t i = 0; i < nmine; ++i)
-    mine.insert(mine.end(), {double(ids[i]), heat[i], impulse[i].x(), impulse[i].y(), impulse[i].z(), particle_T[i]});
-  std::vector<double> gathered;
-  std::vector<int> counts, displs;
-  allgather_doubles(mine, kIn, comm_, gathered, counts, displs);
-  const std::size_t n = all_.size(), ngathered = gathered.size() / kIn;
-  std::vector<double> all(kOut * n, 0.0);
-  // usually the reports come in the order the particles were located: look them up by id
-  // only where they do not
-  bool same_order = ngathered == n;
-  for (std::size_t g = 0; g < n && same_order; ++g) same_order = std::int64_t(gathered[kIn * g]) == all_[g].id;
-  if (same_order) {
-    for (std::size_t g = 0; g < n; ++g)
-      for (int q = 0; q < kOut; ++q) all[kOut * g + q] = gathered[kIn * g + 1 + q];
-  } else {
-    std::unordered_map<std::int64_t, std::size_t> entry;
-    for (std::size_t k = 0; k < ngathered; ++k) entry[std::int64_t(gathered[kIn * k])] = k;
-    for (std::size_t g = 0; g < n; ++g) {
-      const auto it = entry.find(all_[g].id);
-      if (it == entry.end()) continue;
-      for (int q = 0; q < kOut; ++q) all[kOut * g + q] = gathered[kIn * it->second + 1 + q];
+  std::vector<std::size_t> send_rows(std::size_t(size_) + 1, 0), order;
+  for (std::size_t i = 0; i < nreports; ++i)
+    if (located_by[i] >= 0 && located_by[i] < size_) ++send_rows[std::size_t(located_by[i]) + 1];
+  for (int r = 0; r < size_; ++r) send_rows[r + 1] += send_rows[r];
+  std::vector<double> send(kIn * send_rows[size_]);
+  {
+    std::vector<std::size_t> next(send_rows.begin(), send_rows.end() - 1);
+    for (std::size_t i = 0; i < nreports; ++i) {
+      if (located_by[i] < 0 || located_by[i] >= size_) continue;
+      double *q = &send[kIn * next[std::size_t(located_by[i])]++];
+      q[0] = double(ids[i]), q[1] = heat[i], q[2] = impulse[i].x(), q[3] = impulse[i].y(), q[4] = impulse[i].z();
+      q[5] = particle_T[i];
     }
   }
-  // the heat a cell can give particle g before it reaches the particle's temperature: g's
+  std::vector<int> send_counts(static_cast<std::size_t>(size_)), recv_counts(static_cast<std::size_t>(size_));
+  for (int r = 0; r < size_; ++r) send_counts[r] = int(send_rows[r + 1] - send_rows[r]);
+  MPI_Alltoall(send_counts.data(), 1, MPI_INT, recv_counts.data(), 1, MPI_INT, comm_);
+  std::vector<std::size_t> recv_rows(std::size_t(size_) + 1, 0);
+  for (int r = 0; r < size_; ++r) recv_rows[r + 1] = recv_rows[r] + std::size_t(recv_counts[r]);
+  std::vector<double> reports(kIn * recv_rows[size_]);
+  exchange_rows(send_rows, send, kIn, recv_rows, reports, true);
+
+  // the reports by located particle: usually in the order they were located, else by id
+  const std::size_t nl = local_.size(), nr = recv_rows[size_];
+  std::vector<double> mine(kOut * nl, 0.0);
+  bool same_order = nr == nl;
+  for (std::size_t i = 0; i < nl && same_order; ++i) same_order = std::int64_t(reports[kIn * i]) == local_[i].id;
+  if (same_order) {
+    for (std::size_t i = 0; i < nl; ++i) std::copy_n(&reports[kIn * i + 1], kOut, &mine[kOut * i]);
+  } else {
+    std::unordered_map<std::int64_t, std::size_t> entry;
+    entry.reserve(nl);
+    for (std::size_t i = 0; i < nl; ++i) entry[local_[i].id] = i;
+    for (std::size_t k = 0; k < nr; ++k) {
+      const auto it = entry.find(std::int64_t(reports[kIn * k]));
+      if (it != entry.end()) std::copy_n(&reports[kIn * k + 1], kOut, &mine[kOut * it->second]);
+    }
+  }
+  std::vector<double> all;
+  forward(routing_, mine, kOut, all);
+
+  // the heat a cell can give particle v before it reaches the particle's temperature: v's
   // share of the cell's capacity times the cell's temperature difference to the particle, in
-  // the direction g took heat (the parcel g exchanged heat with is the sum of these shares)
+  // the direction v took heat (the parcel v exchanged heat with is the sum of these shares)
+  const std::size_t nv = visitors_.size();
   std::vector<double> available(cells_.size(), 0.0);
   if (f.volume)
-    for (std::size_t g = 0; g < n; ++g)
-      for (std::size_t k = start_[g]; k < start_[g + 1]; ++k) {
+    for (std::size_t v = 0; v < nv; ++v)
+      for (std::size_t k = start_[v]; k < start_[v + 1]; ++k) {
         const long c = cells_[k];
         const double capacity = share_[k] * f.rho[c] * f.cp[c] * f.volume[c];
-        const double *a = &all[kOut * g];
+        const double *a = &all[kOut * v];
         const double dT = a[0] >= 0.0 ? f.T[c] - a[4] : a[4] - f.T[c];
         available[k] = capacity * std::max(dT, 0.0);
       }
   // per particle over every rank's cells: the parcel's capacity and mass, the available heat
-  std::vector<double> sums(3 * n, 0.0);
-  for (std::size_t g = 0; g < n; ++g)
-    for (std::size_t k = start_[g]; k < start_[g + 1]; ++k) {
-      sums[3 * g] += parcel_capacity(f, k);
-      sums[3 * g + 1] += parcel_mass(f, k);
-      sums[3 * g + 2] += available[k];
+  std::vector<double> partial(3 * nv, 0.0);
+  for (std::size_t v = 0; v < nv; ++v)
+    for (std::size_t k = start_[v]; k < start_[v + 1]; ++k) {
+      partial[3 * v] += parcel_capacity(f, k);
+      partial[3 * v + 1] += parcel_mass(f, k);
+      partial[3 * v + 2] += available[k];
     }
-  if (n) MPI_Allreduce(MPI_IN_PLACE, sums.data(), int(3 * n), MPI_DOUBLE, MPI_SUM, comm_);
-  for (std::size_t g = 0; g < n; ++g) {
-    if (!inside_[g]) continue;
-    const double *a = &all[kOut * g];
-    const double capacity = sums[3 * g], mass = sums[3 * g + 1], room = sums[3 * g + 2];
+  std::vector<double> sums, sums_of_visitor;
+  sum_backward(routing_, partial, 3, sums);
+  forward(routing_, sums, 3, sums_of_visitor);
+  for (std::size_t v = 0; v < nv; ++v) {
+    const double *a = &all[kOut * v];
+    const double capacity = sums_of_visitor[3 * v], mass = sums_of_visitor[3 * v + 1],
+                 room = sums_of_visitor[3 * v + 2];
     const double Q = std::abs(a[0]);
-    for (std::size_t k = start_[g]; k < start_[g + 1]; ++k) {
+    for (std::size_t k = start_[v]; k < start_[v + 1]; ++k) {
       const long c = cells_[k];
       const double by_capacity = capacity > 0.0 ? parcel_capacity(f, k) / capacity : weights_[k];
       // each cell by the heat it has above (below) the particle's temperature, so each moves
@@ -282,31 +431,27 @@ double ParallelExchange::parcel_capacity(const CellFluidFields &f, std::size_t k
   return parcel_mass(f, k) * f.cp[cells_[k]];
 }
 
-void ParallelExchange::local_weights(std::int64_t g, std::vector<CellWeight> &out) const
+void ParallelExchange::local_weights(std::size_t i, std::vector<CellWeight> &out) const
 {
   out.clear();
-  for (std::size_t k = start_[std::size_t(g)]; k < start_[std::size_t(g) + 1]; ++k)
-    out.push_back({cells_[k], weights_[k]});
+  const std::size_t v = visitor_of_local_.at(i);
+  if (v == kNone) return;
+  for (std::size_t k = start_[v]; k < start_[v + 1]; ++k) out.push_back({cells_[k], weights_[k]});
 }
-
-}  // namespace meltdem::coupling
-
-namespace meltdem::coupling {
 
 void ParallelExchange::nearest_solid(const double *solid_fraction, double reach, std::vector<SolidSurface> &out) const
 {
-  const std::size_t n = all_.size();
-  std::vector<SolidSurface> local(n);
-  struct DistRank {
-    double d;
-    int rank;
-  };
-  std::vector<DistRank> best(n, DistRank{std::numeric_limits<double>::infinity(), rank_});
+  // the spheres grown by the reach go to the ranks whose cells they reach
+  Routing routing;
+  std::vector<ParticleShape> visitors;
+  route(local_, reach, routing, visitors);
+  constexpr int kPack = 8;  // present, distance, point, normal
+  std::vector<double> found(kPack * visitors.size(), 0.0);
   std::vector<long> cells;
   std::vector<Eigen::Vector3d> lo, hi;
-  for (std::size_t g = 0; g < n; ++g) {
+  for (std::size_t v = 0; v < visitors.size(); ++v) {
     cells.clear();
-    mesh_.cells_in_sphere(all_[g].x, all_[g].radius + reach, cells);
+    mesh_.cells_in_sphere(visitors[v].x, visitors[v].radius + reach, cells);
     lo.clear();
     hi.clear();
     for (long c : cells) {
@@ -316,28 +461,24 @@ void ParallelExchange::nearest_solid(const double *solid_fraction, double reach,
       lo.push_back(l);
       hi.push_back(h);
     }
-    local[g] = nearest_solid_surface(all_[g].x, lo, hi);
-    if (local[g].present) best[g].d = local[g].distance;
+    const SolidSurface s = nearest_solid_surface(visitors[v].x, lo, hi);
+    if (!s.present) continue;
+    double *q = &found[kPack * v];
+    q[0] = 1.0, q[1] = s.distance;
+    for (int a = 0; a < 3; ++a) q[2 + a] = s.point[a], q[5 + a] = s.normal[a];
   }
-  // the rank with the nearest surface provides it (lowest rank on ties)
-  if (n) MPI_Allreduce(MPI_IN_PLACE, best.data(), int(n), MPI_DOUBLE_INT, MPI_MINLOC, comm_);
-  constexpr int kPack = 8;  // present, distance, point, normal
-  std::vector<double> pack(kPack * n, 0.0);
-  for (std::size_t g = 0; g < n; ++g)
-    if (local[g].present && best[g].rank == rank_) {
-      double *q = &pack[kPack * g];
-      q[0] = 1.0, q[1] = local[g].distance;
-      for (int a = 0; a < 3; ++a) q[2 + a] = local[g].point[a], q[5 + a] = local[g].normal[a];
-    }
-  if (n) MPI_Allreduce(MPI_IN_PLACE, pack.data(), int(kPack * n), MPI_DOUBLE, MPI_SUM, comm_);
-  out.assign(n, SolidSurface());
-  for (std::size_t g = 0; g < n; ++g) {
-    const double *q = &pack[kPack * g];
-    if (q[0] == 0.0) continue;
-    out[g].present = true;
-    out[g].distance = q[1];
-    out[g].point = Eigen::Vector3d(q[2], q[3], q[4]);
-    out[g].normal = Eigen::Vector3d(q[5], q[6], q[7]);
+  std::vector<double> rows;
+  backward(routing, found, kPack, rows);
+  // the rank with the nearest surface provides it (rows come in rank order: lowest on ties)
+  out.assign(local_.size(), SolidSurface());
+  for (std::size_t j = 0; j < routing.send_index.size(); ++j) {
+    const double *q = &rows[kPack * j];
+    SolidSurface &s = out[routing.send_index[j]];
+    if (q[0] == 0.0 || (s.present && !(q[1] < s.distance))) continue;
+    s.present = true;
+    s.distance = q[1];
+    s.point = Eigen::Vector3d(q[2], q[3], q[4]);
+    s.normal = Eigen::Vector3d(q[5], q[6], q[7]);
   }
 }
 

@@ -226,6 +226,12 @@ double CartesianGridMesh::cell_volume(long cell) const
   return (hi - lo).prod();
 }
 
+bool CartesianGridMesh::bounds(Eigen::Vector3d &lo, Eigen::Vector3d &hi) const
+{
+  for (int a = 0; a < 3; ++a) lo[a] = nodes_[a].front(), hi[a] = nodes_[a].back();
+  return true;
+}
+
 void CartesianGridMesh::cells_in_sphere(const Eigen::Vector3d &c, double r, std::vector<long> &cells) const
 {
   int lo[3], hi[3];

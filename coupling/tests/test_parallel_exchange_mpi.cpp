@@ -1,7 +1,9 @@
-// parallel_exchange.h over 2 ranks (mpirun -np 2): the mesh is cut at x node 6 (rank 0
-// holds cells i < 6, rank 1 the rest) and the particles are dealt round-robin, unlike
-// the mesh: every cell's deposit and every particle's sampled field must equal the
-// single-rank result on the whole mesh.
+// parallel_exchange.h over N ranks (mpirun -np 2 and -np 4): the mesh is cut into N slabs
+// along x (np 2: at x node 6) and the particles are dealt round-robin, unlike the mesh:
+// every cell's deposit and every particle's sampled field must equal the single-rank result
+// on the whole mesh, what the particles took is reported by another rank than the one that
+// located them, and each rank receives exactly the particles whose sphere reaches its
+// cells (no rank sees them all).
 #include "mpi_gtest.h"
 #include "meltdem/coupling/parallel_exchange.h"
 #include "parallel_exchange_case.h"
@@ -22,10 +24,11 @@ class ParallelExchangeMpi : public ::testing::TestWithParam<DistributionModel> {
 
 TEST_P(ParallelExchangeMpi, EqualsOneRank)
 {
-  ASSERT_EQ(size, 2) << "run with mpirun -np 2";
   ExchangeCase k;
-  const int nx = int(k.x.size()) - 1, ny = int(k.y.size()) - 1, nz = int(k.z.size()) - 1, cut = 6;
-  const int i0 = rank == 0 ? 0 : cut, i1 = rank == 0 ? cut : nx;
+  const int nx = int(k.x.size()) - 1, ny = int(k.y.size()) - 1, nz = int(k.z.size()) - 1;
+  ASSERT_LE(size, nx) << "at most " << nx << " ranks";
+  // slabs of x cells: np 2 cuts at node 6 (where the case puts straddling particles)
+  const int i0 = rank * nx / size, i1 = (rank + 1) * nx / size;
   const CartesianGridMesh whole(k.x, k.y, k.z), mine = k.part(i0, i1);
 
   auto fields = [&](const CartesianGridMesh &m, std::vector<double> &T, std::vector<double> &one,
@@ -59,13 +62,26 @@ TEST_P(ParallelExchangeMpi, EqualsOneRank)
   serial.deposit_taken(ids, heat, impulse, particle_T, fs, cells_serial);
   std::vector<SampledFluid> sampled_serial;
   serial.sample(fs, sampled_serial);
+  // solid metal in a pattern of cells, searched within 0.1 mm beyond each particle
+  auto solid_of = [](const CartesianGridMesh &m) {
+    std::vector<double> solid;
+    for (long c = 0; c < m.n_cells(); ++c) {
+      const Eigen::Vector3d x = m.cell_centre(c);
+      solid.push_back(x.z() < 1.5e-4 || (x.x() > 4e-4 && x.x() < 6e-4 && x.y() > 5e-4) ? 1.0 : 0.0);
+    }
+    return solid;
+  };
+  const double reach = 1e-4;
+  const std::vector<double> solid_serial = solid_of(whole);
+  std::vector<SolidSurface> surfaces_serial;
+  serial.nearest_solid(solid_serial.data(), reach, surfaces_serial);
 
   // parallel: round-robin particles, half the mesh each
   std::vector<ParticleShape> my_particles;
   std::vector<Amounts> my_amounts;
   std::vector<std::size_t> my_index;
   for (std::size_t i = 0; i < k.particles.size(); ++i)
-    if (int(i % 2) == rank)
+    if (int(i % size) == rank)
       my_particles.push_back(k.particles[i]), my_amounts.push_back(k.amounts[i]), my_index.push_back(i);
   std::vector<double> Tp, onep, Up;
   const CellFluidFields fp = fields(mine, Tp, onep, Up);
@@ -77,15 +93,27 @@ TEST_P(ParallelExchangeMpi, EqualsOneRank)
   // the records come from the other rank than the one that located them (particles move
   // between DEM ranks during the sub-cycles)
   std::vector<std::int64_t> other_ids;
+  std::vector<int> other_located_by;
   std::vector<double> other_heat, other_T;
   std::vector<Eigen::Vector3d> other_impulse;
   for (std::size_t i = 0; i < k.particles.size(); ++i)
-    if (int(i % 2) != rank)
-      other_ids.push_back(k.particles[i].id), other_heat.push_back(heat[i]), other_impulse.push_back(impulse[i]),
-          other_T.push_back(particle_T[i]);
-  parallel.deposit_taken(other_ids, other_heat, other_impulse, other_T, fp, cells_parallel);
+    if (int((i + 1) % size) == rank)  // the next rank reports what rank i % size located
+      other_ids.push_back(k.particles[i].id), other_located_by.push_back(int(i % size)), other_heat.push_back(heat[i]),
+          other_impulse.push_back(impulse[i]), other_T.push_back(particle_T[i]);
+  parallel.deposit_taken(other_ids, other_located_by, other_heat, other_impulse, other_T, fp, cells_parallel);
   std::vector<SampledFluid> sampled_parallel;
   parallel.sample(fp, sampled_parallel);
+  const std::vector<double> solid_parallel = solid_of(mine);
+  std::vector<SolidSurface> surfaces_parallel;
+  parallel.nearest_solid(solid_parallel.data(), reach, surfaces_parallel);
+
+  // the visitors: the particles whose sphere reaches this rank's slab, and no others
+  std::size_t reaching = 0;
+  Eigen::Vector3d lo, hi;
+  mine.bounds(lo, hi);
+  for (const auto &p : k.particles) reaching += (p.x.cwiseMax(lo).cwiseMin(hi) - p.x).norm() <= p.radius * (1 + 1e-12);
+  EXPECT_EQ(parallel.visitor_count(), reaching);
+  if (size > 1) EXPECT_LT(parallel.visitor_count(), k.particles.size());
 
   Amounts scale{};
   for (const Amounts &a : k.amounts)
@@ -105,14 +133,27 @@ TEST_P(ParallelExchangeMpi, EqualsOneRank)
     worst_sample = std::max(
         {worst_sample, std::abs(a.fluid.T - b.fluid.T) / b.fluid.T, std::abs(a.fluid.U[0] - b.fluid.U[0]) / 1e-3});
   }
+  int surfaces_found = 0;
+  for (std::size_t l = 0; l < my_index.size(); ++l) {
+    const SolidSurface &a = surfaces_parallel[l], &b = surfaces_serial[my_index[l]];
+    ASSERT_EQ(a.present, b.present) << "particle " << my_index[l];
+    if (!a.present) continue;
+    ++surfaces_found;
+    EXPECT_NEAR(a.distance, b.distance, 1e-15) << "particle " << my_index[l];
+    EXPECT_LE((a.point - b.point).norm(), 1e-15) << "particle " << my_index[l];
+  }
+  MPI_Allreduce(MPI_IN_PLACE, &surfaces_found, 1, MPI_INT, MPI_SUM, MPI_COMM_WORLD);
+  EXPECT_GT(surfaces_found, 10);
   double w[2] = {worst_cell, worst_sample};
   MPI_Allreduce(MPI_IN_PLACE, w, 2, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
   const std::string m = to_string(GetParam());
   if (rank == 0) {
-    meltdem::testing::expect_absolute(
-        "parallel_exchange np2 " + m + ": cell deposit vs one rank (relative to the largest amount)", w[0], 0.0, 1e-12);
-    meltdem::testing::expect_absolute("parallel_exchange np2 " + m + ": sampled fields vs one rank (relative)", w[1],
-                                      0.0, 1e-12);
+    meltdem::testing::expect_absolute("parallel_exchange np" + std::to_string(size) + " " + m +
+                                          ": cell deposit vs one rank (relative to the largest amount)",
+                                      w[0], 0.0, 1e-12);
+    meltdem::testing::expect_absolute("parallel_exchange np" + std::to_string(size) + " " + m +
+                                          ": sampled fields vs one rank (relative)",
+                                      w[1], 0.0, 1e-12);
   } else {
     EXPECT_LE(w[0], 1e-12);
     EXPECT_LE(w[1], 1e-12);

@@ -73,6 +73,13 @@ class BoxListMesh : public DistributionMesh {
     for (std::size_t i = 0; i < lo.size(); ++i)
       if ((c.cwiseMax(lo[i]).cwiseMin(hi[i]) - c).squaredNorm() < r * r) cells.push_back(long(i));
   }
+  bool bounds(Vector3d &l, Vector3d &h) const override
+  {
+    if (lo.empty()) return false;
+    l = lo[0], h = hi[0];
+    for (std::size_t i = 1; i < lo.size(); ++i) l = l.cwiseMin(lo[i]), h = h.cwiseMax(hi[i]);
+    return true;
+  }
 };
 
 // [0,1]^3 coarse beside [1,2]x[0,1]^2 split into 8 cells of 0.5

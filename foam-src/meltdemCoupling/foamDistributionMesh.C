@@ -23,9 +23,11 @@ void Foam::meltdem::foamDistributionMesh::update()
     const cellList& cells = mesh.cells();
     const faceList& faces = mesh.faces();
     const scalarField& V = mesh.cellVolumes();
+    localBounds_ = boundBox::invertedBox;
     forAll(cells, celli)
     {
         cellBoxes_[celli] = treeBoundBox(cells[celli].points(faces, pts));
+        localBounds_.add(cellBoxes_[celli]);
         if (mag(cellBoxes_[celli].volume() - V[celli]) > 1e-9*V[celli])
         {
             boxCells_ = false;
@@ -133,6 +135,21 @@ void Foam::meltdem::foamDistributionMesh::cells_in_sphere
         if (cellBoxes_[celli].overlaps(search)) cells.push_back(long(celli));
     }
     std::sort(cells.begin() + std::ptrdiff_t(start), cells.end());
+}
+
+
+bool Foam::meltdem::foamDistributionMesh::bounds
+(
+    Eigen::Vector3d& lo,
+    Eigen::Vector3d& hi
+) const
+{
+    if (cellBoxes_.empty()) return false;
+    const point& a = localBounds_.min();
+    const point& b = localBounds_.max();
+    lo = Eigen::Vector3d(a.x(), a.y(), a.z());
+    hi = Eigen::Vector3d(b.x(), b.y(), b.z());
+    return true;
 }
 
 

@@ -147,6 +147,7 @@ Foam::meltdem::particleCoupling::particleCoupling
             checkpoint_->dir(mesh.time().timeName())
         )
     );
+    ranks_.reset(new rankLoadOutput(mesh, comm, resumed));
 
     Info<< "Particles: " << lammps.particles() << " particles, DEM step "
         << lammps.timestep() << " s, coupling interval "
@@ -159,6 +160,7 @@ Foam::meltdem::particleCoupling::~particleCoupling()
 {
     // LAMMPS and the exchanges before the communicator they use
     ledger_.reset();
+    ranks_.reset();
     host_.reset();
     exchange_.reset();
     startExchange_.reset();
@@ -217,12 +219,14 @@ void Foam::meltdem::particleCoupling::advance(Time& runTime, const fluidFields& 
     double t0 = seconds();
 
     // 1. the fluid each particle sees, fixed over the step
-    std::vector<mc::ExchangeRecord> start;
+    std::vector<mc::ExchangeRecord>& start = start_;
     lammps.local_particles(start);
     relocate(shapesOf(start));
+    metalCells_ = 0;
+    for (const scalar a : f.alphaMetal.primitiveField()) metalCells_ += a >= 0.5;
     const scalarField cp(f.rhoCp.primitiveField()/f.rho.primitiveField());
     const mc::CellFluidFields cells(particleSampling::cellFields(f, cp));
-    std::vector<mc::SampledFluid> sampled;
+    std::vector<mc::SampledFluid>& sampled = sampled_;
     sampling_->sample(*exchange_, cells, f, start, *bounds_, sampled);
     std::vector<mc::SolidSurface> solid;
     if (lammps.solid_metal_wall())
@@ -236,20 +240,18 @@ void Foam::meltdem::particleCoupling::advance(Time& runTime, const fluidFields& 
     scalar dtSub;
     subCycles(runTime, n, dtSub);
     std::vector<double> light;
-    sampling_->shade(runTime, start, n*dtSub, *exchange_, light);
+    sampling_->shade(runTime, start, n*dtSub, light);
     bounds_->setHeated(sampling_->heated());
-    lammps.set_fluid(sampling_->fluidStates(*exchange_, sampled, solid, light));
-    std::unordered_map<std::int64_t, double> lightOf;
-    for (std::size_t g = 0; g < light.size(); ++g)
-    {
-        if (light[g] > 0) lightOf[exchange_->global_id(std::int64_t(g))] = light[g];
-    }
+    std::vector<std::int64_t> ids;
+    std::vector<mc::FluidState> states;
+    sampling_->fluidStates(*exchange_, start, sampled, solid, light, ids, states);
+    lammps.set_fluid(ids, states, exchange_->rank());
 
     const std::int64_t before = lammps.particles();
     const double tLmp0 = lammps.time();
     exchangeSeconds_ += seconds() - t0;
     const double w0 = seconds();
-    std::vector<mc::ExchangeRecord> records;
+    std::vector<mc::ExchangeRecord>& records = records_;
     const bool shortened = dtSub < dtDem*(1 - 1e-12);
     if (shortened) lammps.set_timestep(dtSub);
     lammps.advance(int(n), records);
@@ -280,17 +282,14 @@ void Foam::meltdem::particleCoupling::advance(Time& runTime, const fluidFields& 
     // meshes); and it stopped absorbing its light: the beam the shadow held back for the
     // rest of the step heats its melt (the continuum gets it with the melt's enthalpy), so
     // continuum + particles still absorb eta P
-    std::unordered_map<std::int64_t, double> startRadius;
-    startRadius.reserve(start.size());
-    for (const auto& r : start) startRadius[r.id] = r.radius;
+    auto atStart = start.cbegin();  // both by ascending id
     for (auto& r : records)
     {
         if (r.mass > 0) continue;
-        const auto radius = startRadius.find(r.id);
-        if (radius != startRadius.end()) r.radius = max(r.radius, radius->second);
-        const auto lit = lightOf.find(r.id);
-        if (lit == lightOf.end()) continue;
-        const double rest = lit->second*elapsed - r.external_heat;
+        while (atStart != start.cend() && atStart->id < r.id) ++atStart;
+        if (atStart != start.cend() && atStart->id == r.id) r.radius = max(r.radius, atStart->radius);
+        if (!(r.light > 0)) continue;
+        const double rest = r.light*elapsed - r.external_heat;
         if (rest > 0)
         {
             r.external_heat += rest;
@@ -333,6 +332,9 @@ void Foam::meltdem::particleCoupling::book(const functionObjects::meltdemBalance
     ::meltdem::LammpsCouplingHost& lammps = (*host_)();
     if (heat_) heat_->settle(*exchange_, inside_, lammps);
     ledger_->book(balance.lastStep(), inside_, lost_, lammps, subSteps_, exchangeSeconds_, lammpsSeconds_);
+    std::int64_t present = 0;
+    for (const auto& r : records_) present += r.mass > 0;
+    ranks_->write(metalCells_, present, {exchange_.get(), startExchange_.get()});
     lossWatch_->check(lost_, lammps, distMesh_.globalBounds());
     bounds_->check(deposition_->enthalpySource());
 }
@@ -360,14 +362,31 @@ void Foam::meltdem::particleCoupling::globalParticles
         (*host_)().local_particles(now);
         relocate(shapesOf(now));
     }
-    const std::vector<mc::ParticleShape>& all = exchange_->global_shapes();
-    centres.setSize(label(all.size()));
-    radii.setSize(label(all.size()));
+    // every rank's particles (the refinement criteria look for grains near any cell)
+    const MPI_Comm comm = comm_->comm();
+    int size = 1;
+    MPI_Comm_size(comm, &size);
+    std::vector<double> mine;
+    mine.reserve(4*located_.size());
+    for (const mc::ParticleShape& p : located_)
+    {
+        mine.insert(mine.end(), {p.x.x(), p.x.y(), p.x.z(), p.radius});
+    }
+    const int count = int(mine.size());
+    std::vector<int> counts(size), offsets(size, 0);
+    MPI_Allgather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, comm);
+    for (int r = 1; r < size; ++r) offsets[r] = offsets[r - 1] + counts[r - 1];
+    std::vector<double> all(std::size_t(offsets[size - 1] + counts[size - 1]));
+    MPI_Allgatherv
+    (
+        mine.data(), count, MPI_DOUBLE, all.data(), counts.data(), offsets.data(), MPI_DOUBLE, comm
+    );
+    centres.setSize(label(all.size()/4));
+    radii.setSize(label(all.size()/4));
     forAll(centres, i)
     {
-        const mc::ParticleShape& p = all[std::size_t(i)];
-        centres[i] = point(p.x.x(), p.x.y(), p.x.z());
-        radii[i] = p.radius;
+        centres[i] = point(all[4*i], all[4*i + 1], all[4*i + 2]);
+        radii[i] = all[4*i + 3];
     }
 }
 

@@ -56,6 +56,7 @@ void Foam::meltdem::particleDeposition::deposit
     // impulse by mass weights)
     std::vector<mc::Amounts> amounts;
     std::vector<std::int64_t> takers;
+    std::vector<int> locatedBy;
     std::vector<double> heat;
     std::vector<Eigen::Vector3d> impulse;
     std::vector<double> takerT;
@@ -67,6 +68,7 @@ void Foam::meltdem::particleDeposition::deposit
             inside.push_back(r);
             amounts.push_back(mc::make_amounts(r.mass_out, r.enthalpy_out, r.momentum_out));
             takers.push_back(r.id);
+            locatedBy.push_back(r.located_by);
             heat.push_back(r.heat_absorbed);
             impulse.push_back(r.impulse_from_fluid);
             takerT.push_back(r.T);
@@ -80,7 +82,7 @@ void Foam::meltdem::particleDeposition::deposit
     }
     std::vector<mc::Amounts> deposited(std::size_t(mesh_.nCells()), mc::Amounts{});
     end.deposit(amounts, deposited);
-    start.deposit_taken(takers, heat, impulse, takerT, cells, deposited);
+    start.deposit_taken(takers, locatedBy, heat, impulse, takerT, cells, deposited);
 
     const scalarField& V = mesh_.V();
     forAll(V, celli)

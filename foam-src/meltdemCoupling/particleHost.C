@@ -3,6 +3,8 @@
 #include "uniformDimensionedFields.H"
 #include "meltdem/coupling/parallel_exchange.h"
 
+#include <limits>
+
 namespace mc = ::meltdem::coupling;
 
 namespace
@@ -111,15 +113,19 @@ void checkDomains
     for (const auto& r : now) shapes.push_back({r.x, r.radius, r.id});
     mc::ParallelExchange probe(distMesh, mc::DistributionModel::Centre, comm);
     probe.locate(shapes);
-    for (std::int64_t g = 0; g < probe.global_particles(); ++g)
+    // the lowest id outside, on every rank
+    std::int64_t outside = std::numeric_limits<std::int64_t>::max();
+    for (std::size_t i = 0; i < shapes.size(); ++i)
     {
-        if (!probe.global_inside(g))
-        {
-            FatalIOErrorInFunction(dict)
-                << "particle " << probe.global_id(g) << " of " << dict.get<word>("lammpsInput")
-                << " is outside the mesh at the start; move it inside or enlarge the mesh"
-                << exit(FatalIOError);
-        }
+        if (!probe.inside(i)) outside = std::min(outside, shapes[i].id);
+    }
+    MPI_Allreduce(MPI_IN_PLACE, &outside, 1, MPI_INT64_T, MPI_MIN, comm);
+    if (outside != std::numeric_limits<std::int64_t>::max())
+    {
+        FatalIOErrorInFunction(dict)
+            << "particle " << outside << " of " << dict.get<word>("lammpsInput")
+            << " is outside the mesh at the start; move it inside or enlarge the mesh"
+            << exit(FatalIOError);
     }
 }
 

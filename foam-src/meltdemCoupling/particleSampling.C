@@ -52,10 +52,9 @@ void Foam::meltdem::particleSampling::sample
     std::vector<mc::SampledFluid>& sampled
 ) const
 {
-    exchange.sample_global(cells, sampled);
+    exchange.sample(cells, sampled);
     if (!thermal_) return;
     // the range no exchange may leave, and the worst cell's C/G for the message
-    const std::size_t offset = exchange.local_offset();
     std::vector<mc::Amounts> g(start.size(), mc::Amounts{});
     scalar Tplo = GREAT, Tphi = -GREAT;
     for (std::size_t i = 0; i < start.size(); ++i)
@@ -63,7 +62,7 @@ void Foam::meltdem::particleSampling::sample
         if (!exchange.inside(i)) continue;
         g[i][0] = mc::particle_conductance
         (
-            sampled[offset + i].fluid, 2*start[i].radius, start[i].v.data()
+            sampled[i].fluid, 2*start[i].radius, start[i].v.data()
         );
         Tplo = min(Tplo, start[i].T);
         Tphi = max(Tphi, start[i].T);
@@ -113,7 +112,6 @@ void Foam::meltdem::particleSampling::shade
     const Time& runTime,
     const std::vector<mc::ExchangeRecord>& start,
     const scalar dtPlanned,
-    const mc::ParallelExchange& exchange,
     std::vector<double>& absorbed
 )
 {
@@ -148,16 +146,10 @@ void Foam::meltdem::particleSampling::shade
     }
     shadow_ = mc::shade_particles(comm_, beam, local);
 
-    // by global index (rank order, as the exchange numbers them)
-    const std::size_t offset = exchange.local_offset();
-    absorbed.assign(std::size_t(exchange.global_particles()), 0.0);
+    absorbed.assign(start.size(), 0.0);
     for (std::size_t k = 0; k < solid.size(); ++k)
     {
-        absorbed[offset + solid[k]] = shadow_.absorbed[k];
-    }
-    if (!absorbed.empty())
-    {
-        MPI_Allreduce(MPI_IN_PLACE, absorbed.data(), int(absorbed.size()), MPI_DOUBLE, MPI_SUM, comm_);
+        absorbed[solid[k]] = shadow_.absorbed[k];
     }
     const mc::ShadowResult* result = &shadow_;
     laser_->setShadow
@@ -171,26 +163,30 @@ void Foam::meltdem::particleSampling::shade
 }
 
 
-std::unordered_map<std::int64_t, ::meltdem::coupling::FluidState>
-Foam::meltdem::particleSampling::fluidStates
+void Foam::meltdem::particleSampling::fluidStates
 (
     const mc::ParallelExchange& exchange,
+    const std::vector<mc::ExchangeRecord>& start,
     const std::vector<mc::SampledFluid>& sampled,
     const std::vector<mc::SolidSurface>& solid,
-    const std::vector<double>& light
+    const std::vector<double>& light,
+    std::vector<std::int64_t>& ids,
+    std::vector<mc::FluidState>& states
 ) const
 {
-    std::unordered_map<std::int64_t, mc::FluidState> fluid;
-    fluid.reserve(std::size_t(exchange.global_particles()));
-    for (std::int64_t g = 0; g < exchange.global_particles(); ++g)
+    ids.clear();
+    states.clear();
+    ids.reserve(start.size());
+    states.reserve(start.size());
+    for (std::size_t i = 0; i < start.size(); ++i)
     {
-        if (!exchange.global_inside(g)) continue;
-        mc::FluidState& fs = fluid[exchange.global_id(g)];
-        fs = sampled[g].fluid;
-        if (!solid.empty()) fs.solid = solid[g];
-        if (!light.empty()) fs.heat_source = light[g];
+        if (!exchange.inside(i)) continue;
+        ids.push_back(start[i].id);
+        mc::FluidState fs = sampled[i].fluid;
+        if (!solid.empty()) fs.solid = solid[i];
+        if (!light.empty()) fs.heat_source = light[i];
         fs.thermal = thermal_;
         fs.implicit_heat = thermal_ && implicitHeat_;
+        states.push_back(fs);
     }
-    return fluid;
 }

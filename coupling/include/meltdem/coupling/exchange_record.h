@@ -47,6 +47,12 @@ struct ExchangeRecord {
   double conductance = 0.0;
   double heat_capacity = 0.0;
   double heat_owed = 0.0;
+
+  // the rank (of the coupling's communicator) that located the particle at the start of the
+  // interval and handed it its fluid (-1: it had none), and the light it absorbs [W] with
+  // that fluid: the particle may have moved to another DEM rank since
+  int located_by = -1;
+  double light = 0.0;
 };
 
 // mass, enthalpy m h (and the heat owed to it) and momentum m v the particle carries at the

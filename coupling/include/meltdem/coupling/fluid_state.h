@@ -26,6 +26,28 @@ struct FluidState {
                                   // (implicit in the cells' T); the particle takes what it owes
 };
 
+// A FluidState as doubles (LAMMPS per-atom arrays carry it when a particle changes rank).
+constexpr int kFluidStateDoubles = 21;
+constexpr int kFluidStateHeatSource = 16;  // where heat_source is
+inline void pack_fluid_state(const FluidState &s, double *q)
+{
+  q[0] = s.T, q[1] = s.k, q[2] = s.rho, q[3] = s.mu, q[4] = s.cp;
+  for (int a = 0; a < 3; ++a) q[5 + a] = s.U[a];
+  q[8] = s.solid.present ? 1.0 : 0.0, q[9] = s.solid.distance;
+  for (int a = 0; a < 3; ++a) q[10 + a] = s.solid.point[a], q[13 + a] = s.solid.normal[a];
+  q[kFluidStateHeatSource] = s.heat_source, q[17] = s.thermal ? 1.0 : 0.0, q[18] = s.mass, q[19] = s.capacity;
+  q[20] = s.implicit_heat ? 1.0 : 0.0;
+}
+inline void unpack_fluid_state(const double *q, FluidState &s)
+{
+  s.T = q[0], s.k = q[1], s.rho = q[2], s.mu = q[3], s.cp = q[4];
+  for (int a = 0; a < 3; ++a) s.U[a] = q[5 + a];
+  s.solid.present = q[8] != 0.0, s.solid.distance = q[9];
+  for (int a = 0; a < 3; ++a) s.solid.point[a] = q[10 + a], s.solid.normal[a] = q[13 + a];
+  s.heat_source = q[kFluidStateHeatSource], s.thermal = q[17] != 0.0, s.mass = q[18], s.capacity = q[19];
+  s.implicit_heat = q[20] != 0.0;
+}
+
 class FluidStateProvider {
  public:
   virtual ~FluidStateProvider() = default;

@@ -36,6 +36,8 @@ class DistributionMesh {
   virtual double cell_volume(long cell) const = 0;
   // every cell whose bounding box intersects the sphere (a superset is allowed)
   virtual void cells_in_sphere(const Eigen::Vector3d &c, double r, std::vector<long> &cells) const = 0;
+  // box holding every cell's bounding box; false when there are no cells
+  virtual bool bounds(Eigen::Vector3d &lo, Eigen::Vector3d &hi) const = 0;
 };
 
 // Rectilinear (possibly non-uniform) Cartesian grid, cell id = i + nx (j + ny k).
@@ -51,6 +53,7 @@ class CartesianGridMesh : public DistributionMesh {
   Eigen::Vector3d cell_centre(long cell) const override;
   double cell_volume(long cell) const override;
   void cells_in_sphere(const Eigen::Vector3d &c, double r, std::vector<long> &cells) const override;
+  bool bounds(Eigen::Vector3d &lo, Eigen::Vector3d &hi) const override;
 
   long n_cells() const { return long(n_[0]) * n_[1] * n_[2]; }
   long index(int i, int j, int k) const { return i + long(n_[0]) * (j + long(n_[1]) * k); }
