@@ -286,6 +286,20 @@ void ParallelExchange::sample(const CellFluidFields &f, std::vector<SampledFluid
     out[i] = inside_[i] ? finish_sample(&sums[kSampleSums * i]) : SampledFluid();
 }
 
+template <class CellRow>
+void ParallelExchange::deposit_rows(const std::vector<double> &per_local, int per, CellRow cell_row) const
+{
+  std::vector<double> rows;
+  forward(routing_, per_local, per, rows);
+  for (std::size_t v = 0; v < visitors_.size(); ++v) {
+    const double *a = &rows[std::size_t(per) * v];
+    for (std::size_t k = start_[v]; k < start_[v + 1]; ++k) {
+      double *c = cell_row(cells_[k]);
+      for (int q = 0; q < per; ++q) c[q] += weights_[k] * a[q];
+    }
+  }
+}
+
 void ParallelExchange::deposit(const std::vector<Amounts> &local_amounts, std::vector<Amounts> &cell_amounts) const
 {
   if (local_amounts.size() != local_.size())
@@ -293,15 +307,17 @@ void ParallelExchange::deposit(const std::vector<Amounts> &local_amounts, std::v
   std::vector<double> mine(kComponents * local_.size(), 0.0);
   for (std::size_t i = 0; i < local_.size(); ++i)
     if (inside_[i]) std::copy(local_amounts[i].begin(), local_amounts[i].end(), &mine[kComponents * i]);
-  std::vector<double> amounts;
-  forward(routing_, mine, kComponents, amounts);
-  for (std::size_t v = 0; v < visitors_.size(); ++v) {
-    const double *a = &amounts[kComponents * v];
-    for (std::size_t k = start_[v]; k < start_[v + 1]; ++k) {
-      Amounts &c = cell_amounts.at(std::size_t(cells_[k]));
-      for (int q = 0; q < kComponents; ++q) c[q] += weights_[k] * a[q];
-    }
-  }
+  deposit_rows(mine, kComponents, [&](long c) { return cell_amounts.at(std::size_t(c)).data(); });
+}
+
+void ParallelExchange::deposit(const std::vector<double> &local_values, std::vector<double> &cell_values) const
+{
+  if (local_values.size() != local_.size())
+    throw std::invalid_argument("particle exchange: deposit() needs one value per located local particle");
+  std::vector<double> mine(local_.size(), 0.0);
+  for (std::size_t i = 0; i < local_.size(); ++i)
+    if (inside_[i]) mine[i] = local_values[i];
+  deposit_rows(mine, 1, [&](long c) { return &cell_values.at(std::size_t(c)); });
 }
 
 void ParallelExchange::weighted_mean(const double *cell_values, std::vector<double> &local_out) const
@@ -374,26 +390,30 @@ void ParallelExchange::deposit_taken(const std::vector<std::int64_t> &ids, const
   std::vector<double> all;
   forward(routing_, mine, kOut, all);
 
-  // the heat a cell can give particle v before it reaches the particle's temperature: v's
-  // share of the cell's capacity times the cell's temperature difference to the particle, in
-  // the direction v took heat (the parcel v exchanged heat with is the sum of these shares)
-  const std::size_t nv = visitors_.size();
-  std::vector<double> available(cells_.size(), 0.0);
+  // each weight's part of its particle's parcel (mass, heat capacity) and the heat its cell can
+  // give the particle before it reaches the particle's temperature: the part's capacity times
+  // the cell's temperature difference to the particle, in the direction the particle took heat
+  const std::size_t nv = visitors_.size(), nw = cells_.size();
+  std::vector<double> part_mass(nw), part_capacity(nw), available(nw, 0.0);
+  for (std::size_t k = 0; k < nw; ++k) {
+    part_mass[k] = parcel_mass(f, k);
+    part_capacity[k] = part_mass[k] * f.cp[cells_[k]];
+  }
   if (f.volume)
-    for (std::size_t v = 0; v < nv; ++v)
+    for (std::size_t v = 0; v < nv; ++v) {
+      const double *a = &all[kOut * v];
       for (std::size_t k = start_[v]; k < start_[v + 1]; ++k) {
-        const long c = cells_[k];
-        const double capacity = share_[k] * f.rho[c] * f.cp[c] * f.volume[c];
-        const double *a = &all[kOut * v];
-        const double dT = a[0] >= 0.0 ? f.T[c] - a[4] : a[4] - f.T[c];
-        available[k] = capacity * std::max(dT, 0.0);
+        const double T = f.T[cells_[k]];
+        const double dT = a[0] >= 0.0 ? T - a[4] : a[4] - T;
+        available[k] = part_capacity[k] * std::max(dT, 0.0);
       }
+    }
   // per particle over every rank's cells: the parcel's capacity and mass, the available heat
   std::vector<double> partial(3 * nv, 0.0);
   for (std::size_t v = 0; v < nv; ++v)
     for (std::size_t k = start_[v]; k < start_[v + 1]; ++k) {
-      partial[3 * v] += parcel_capacity(f, k);
-      partial[3 * v + 1] += parcel_mass(f, k);
+      partial[3 * v] += part_capacity[k];
+      partial[3 * v + 1] += part_mass[k];
       partial[3 * v + 2] += available[k];
     }
   std::vector<double> sums, sums_of_visitor;
@@ -405,15 +425,14 @@ void ParallelExchange::deposit_taken(const std::vector<std::int64_t> &ids, const
                  room = sums_of_visitor[3 * v + 2];
     const double Q = std::abs(a[0]);
     for (std::size_t k = start_[v]; k < start_[v + 1]; ++k) {
-      const long c = cells_[k];
-      const double by_capacity = capacity > 0.0 ? parcel_capacity(f, k) / capacity : weights_[k];
+      const double by_capacity = capacity > 0.0 ? part_capacity[k] / capacity : weights_[k];
       // each cell by the heat it has above (below) the particle's temperature, so each moves
       // the same fraction of the way towards it and none passes it; the two-body exchange
       // never takes more (round-off aside: what is beyond all cells' room goes by capacity)
       const double given =
           Q <= room ? (room > 0.0 ? Q * available[k] / room : 0.0) : available[k] + (Q - room) * by_capacity;
-      const double mass_share = mass > 0.0 ? parcel_mass(f, k) / mass : weights_[k];
-      Amounts &cell = cell_amounts.at(std::size_t(c));
+      const double mass_share = mass > 0.0 ? part_mass[k] / mass : weights_[k];
+      Amounts &cell = cell_amounts.at(std::size_t(cells_[k]));
       cell[kEnthalpy] -= std::copysign(given, a[0]);
       for (int d = 0; d < 3; ++d) cell[kMomX + d] -= mass_share * a[1 + d];
     }

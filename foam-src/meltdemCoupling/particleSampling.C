@@ -55,12 +55,12 @@ void Foam::meltdem::particleSampling::sample
     exchange.sample(cells, sampled);
     if (!thermal_) return;
     // the range no exchange may leave, and the worst cell's C/G for the message
-    std::vector<mc::Amounts> g(start.size(), mc::Amounts{});
+    std::vector<double> g(start.size(), 0.0);
     scalar Tplo = GREAT, Tphi = -GREAT;
     for (std::size_t i = 0; i < start.size(); ++i)
     {
         if (!exchange.inside(i)) continue;
-        g[i][0] = mc::particle_conductance
+        g[i] = mc::particle_conductance
         (
             sampled[i].fluid, 2*start[i].radius, start[i].v.data()
         );
@@ -68,13 +68,12 @@ void Foam::meltdem::particleSampling::sample
         Tphi = max(Tphi, start[i].T);
     }
     const scalarField& V = mesh_.V();
-    std::vector<mc::Amounts> gCells(std::size_t(V.size()), mc::Amounts{});
-    exchange.deposit(g, gCells);
-    std::vector<double> heatCapacity(V.size()), conductance(V.size());
+    std::vector<double> conductance(std::size_t(V.size()), 0.0);
+    exchange.deposit(g, conductance);
+    std::vector<double> heatCapacity(V.size());
     forAll(V, celli)
     {
         heatCapacity[celli] = f.rhoCp[celli]*V[celli];
-        conductance[celli] = gCells[celli][0];
     }
     const scalar exchangeTime = returnReduce
     (

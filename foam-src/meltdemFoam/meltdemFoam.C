@@ -45,10 +45,18 @@ Description
 #include "upwind.H"
 #include "gaussConvectionScheme.H"
 
+#include <malloc.h>
+
 // * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * //
 
 int main(int argc, char *argv[])
 {
+    // memory freed at the end of a step stays with the process for the next one: glibc would
+    // hand large blocks (fields, the exchange's per-particle arrays) back and fault them in
+    // again every step (bench/scaling.md)
+    mallopt(M_MMAP_THRESHOLD, 1 << 30);
+    mallopt(M_TRIM_THRESHOLD, 1 << 30);
+
     // the physics switches and the entries they read, for `meltdem check`
     for (int i = 1; i < argc; ++i)
     {

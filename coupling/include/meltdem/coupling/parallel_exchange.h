@@ -91,6 +91,8 @@ class ParallelExchange {
   // rank: cell_amounts has one entry per local cell. Amounts of particles outside the
   // mesh are not deposited (the caller books them as outflow).
   void deposit(const std::vector<Amounts> &local_amounts, std::vector<Amounts> &cell_amounts) const;
+  // the same for one value per particle (cell_values: one per local cell)
+  void deposit(const std::vector<double> &local_values, std::vector<double> &cell_values) const;
 
   // Collective. Sum over each of this rank's located particles of w_i values[c_i] over its
   // cells on every rank (values per local cell), in local order: the mean of a cell field the
@@ -154,6 +156,8 @@ class ParallelExchange {
   // send_index (rank r's contribution to local particle send_index[j] at row j)
   void backward(const Routing &routing, const std::vector<double> &per_visitor, int per,
                 std::vector<double> &per_sent) const;
+  // adds w_vc * rows of `per` doubles per local particle to cell c's row (cell_row(c))
+  template <class CellRow> void deposit_rows(const std::vector<double> &per_local, int per, CellRow cell_row) const;
   // the sum over the ranks (in rank order) of backward()'s rows for each local particle
   void sum_backward(const Routing &routing, const std::vector<double> &per_visitor, int per,
                     std::vector<double> &per_local) const;
