@@ -5,7 +5,7 @@ counters the run writes (postProcessing/particleLedger/ranks.csv), with a cost
 model fitted to the measured exchange time and extrapolated to 64-1024 ranks.
 
     /usr/bin/python3 bench/scaling.py [--bin build/bin] [--np 1,2,4,8] [--sizes 5000,50000]
-        [--weak 5000] [--steps 4] [--model overlap] [--out bench] [--quick] [--keep]
+        [--weak 5000] [--steps 4] [--model overlap] [--out bench] [--quick] [--keep] [--before-bin DIR]
 
 Case: meltdem.case.exchange_box, ballistic (one DEM step per fluid step): n^3 particles on a
 lattice of 60 um spacing (d 20-40 um) in a cube of edge n * 60 um / 0.9, cells of about 50 um.
@@ -14,13 +14,15 @@ Strong: n^3 ~ each of --sizes at every --np; weak: n^3 ~ --weak * np. The mesh i
 processor grid, so a grain's LAMMPS owner need not hold its cells. Counters are per rank and
 fluid step over steps 2..N (step 1 holds the start); runs with np > 2 are oversubscribed on
 this 2-core machine, so only np 1 and 2 are timed. The cost model:
-  t_rank = a * visitors + b * weights + messages * latency + bytes / bandwidth
-a, b fitted (least squares) to the exchange time of the np 1 and np 2 runs; latency and
+  t_rank = c * visitors + messages * latency + bytes / bandwidth
+c fitted (least squares) to the exchange time of the np 1 and np 2 runs; latency and
 bandwidth are ASSUMED cluster values (stated in the table), not measured. Visitors per rank
-for P ranks follow the measured halo: ((N/P)^(1/3) + 2 h)^3 lattice sites, h fitted. The
-design before (every rank handled every grain; collectives of the global count) is
-modelled alongside with the same a, b: a * N + b * (its share of the weights), plus the
-316 bytes per grain and step its allgathers and allreduces carried.
+for P ranks follow the measured halo: ((N/P)^(1/3) + 2 h)^3 lattice sites, h fitted;
+messages and bytes per rank the largest measured per neighbour rank and per located grain.
+The design before (every rank handled every grain; collectives of the global count) is
+modelled alongside with the same c: c * N plus the 316 bytes per grain and step its
+allgathers and allreduces carried. --before-bin DIR runs the np 1 and 2 strong cases with
+that build's meltdemFoam too and prints the ratio of the exchange times.
 Writes scaling.md and scaling.png into --out. --quick: 6^3 and 10^3 grains, np 1,2 (a smoke test).
 """
 import argparse
@@ -48,6 +50,9 @@ ap.add_argument("--model", default="overlap")
 ap.add_argument("--quick", action="store_true")
 ap.add_argument("--out", default=HERE)
 ap.add_argument("--keep", action="store_true")
+ap.add_argument("--before-bin", default="",
+                help="a build of the design before (collectives of the global count): its exchange time "
+                     "on the np 1 and 2 strong runs, for the ratio")
 args = ap.parse_args()
 if args.quick:
     args.np, args.sizes, args.weak, args.steps = "1,2", "216,1000", 0, 3
@@ -70,6 +75,22 @@ def run(series, grains, np_):
     eb.build(case, args.model, "ballistic", n, cells, args.steps, edge=edge)
     if np_ > 1:
         cc.decompose(case, np_, GRID[np_])
+    before = None
+    if args.before_bin and series == "strong" and np_ <= 2:
+        # the same case with the build before (its allocator kept from returning memory, as this
+        # build's meltdemFoam does itself, so that the ratio is the exchange's)
+        env = dict(os.environ, MELTDEM_FOAM_SOLVER=os.path.join(args.before_bin, "meltdemFoam"),
+                   MALLOC_MMAP_THRESHOLD_=str(1 << 30), MALLOC_TRIM_THRESHOLD_=str(1 << 30))
+        saved = dict(os.environ)
+        os.environ.update(env)
+        try:
+            eb.timed_solver(case, np_)
+        finally:
+            os.environ.clear()
+            os.environ.update(saved)
+        p = cc.particles_csv(case)
+        before = (p["exchange_seconds"][-1] - p["exchange_seconds"][0]) / (len(p) - 1)
+        shutil.rmtree(os.path.join(case, "postProcessing"))
     stamps, wall = eb.timed_solver(case, np_)
     with open(os.path.join(case, "postProcessing", "particleLedger", "ranks.csv")) as f:
         rows = list(csv.DictReader(f))
@@ -86,7 +107,7 @@ def run(series, grains, np_):
         shutil.rmtree(case)
     d = dict(zip(keys, per_rank.T))
     return dict(series=series, grains=n ** 3, np=np_, cells=cells ** 3, edge=edge, wall=wall,
-                exchange=ex, located=d["located"], visitors=d["visitors"], weights=d["weights"],
+                exchange=ex, before=before, located=d["located"], visitors=d["visitors"], weights=d["weights"],
                 messages=d["messages_sent"] + d["messages_received"], bytes=d["bytes_sent"] + d["bytes_received"])
 
 
@@ -105,42 +126,42 @@ if args.weak:
         print(f"weak   {r['grains']:6d} grains np {np_}: visitors/rank max {r['visitors'].max():.0f}, "
               f"messages/rank max {r['messages'].max():.0f}, kB/rank max {r['bytes'].max() / 1e3:.1f}", flush=True)
 
-# the cost model: a, b from the timed runs (np 1 and 2; rank 0's clock and counters)
+# the cost model: c per visitor from the timed runs (np 1 and 2; rank 0's clock and counters)
 timed = [r for r in results if r["np"] <= 2]
-A = np.array([[r["visitors"][0], r["weights"][0]] for r in timed])
-t = np.array([r["exchange"] for r in timed])
-(a, b), *_ = np.linalg.lstsq(A, t, rcond=None)
-fit_err = max(abs(A[i] @ (a, b) - t[i]) / t[i] for i in range(len(timed)))
+v0 = np.array([r["visitors"][0] for r in timed])
+t0 = np.array([r["exchange"] for r in timed])
+c = float(v0 @ t0 / (v0 @ v0))
+fit_err = float(np.max(np.abs(c * v0 - t0) / t0))
 # the halo: visitors = ((N/P)^(1/3) + 2h)^3, the median over the runs at np > 1
-halo = []
-for r in results:
-    if r["np"] > 1:
-        halo.append(0.5 * (np.mean(r["visitors"]) ** (1 / 3) - (r["grains"] / r["np"]) ** (1 / 3)))
+halo = [0.5 * (np.mean(r["visitors"]) ** (1 / 3) - (r["grains"] / r["np"]) ** (1 / 3))
+        for r in results if r["np"] > 1]
 h = float(np.median(halo)) if halo else 0.25
-w_per = np.mean([np.sum(r["weights"]) / r["grains"] for r in results])   # weights per grain
-msgs = max((np.max(r["messages"]) / min(r["np"] - 1, 26) for r in results if r["np"] > 1), default=10.0)
-bytes_per_visitor = np.mean([np.sum(r["bytes"]) / max(np.sum(r["visitors"]) - r["grains"], 1)
-                             for r in results if r["np"] > 1]) if any(r["np"] > 1 for r in results) else 300.0
+parallel = [r for r in results if r["np"] > 1]
+# traffic: messages per neighbour rank and bytes per located particle, the largest measured (the
+# LAMMPS and mesh decompositions need not match: most of a rank's particles may go elsewhere)
+msgs = max((np.max(r["messages"]) / (r["np"] - 1) if r["np"] <= 8 else 0 for r in parallel), default=22.0)
+bytes_per_grain = max((np.max(r["bytes"] / r["located"]) for r in parallel), default=800.0)
 
 
 def model_new(N, P):
     v = ((N / P) ** (1 / 3) + 2 * h) ** 3
-    remote = v - N / P  # grains seen from other ranks
-    return a * v + b * w_per * v + msgs * min(P - 1, 26) * LATENCY + 2 * remote * bytes_per_visitor / BANDWIDTH
+    return c * v + msgs * min(P - 1, 26) * LATENCY + bytes_per_grain * N / P / BANDWIDTH
 
 
 def model_old(N, P):
-    return a * N + b * w_per * N / P + np.log2(max(P, 2)) * 6 * LATENCY + OLD_BYTES_PER_GRAIN * N / BANDWIDTH
+    return c * N + 2 * np.log2(max(P, 2)) * 6 * LATENCY + 2 * OLD_BYTES_PER_GRAIN * N / BANDWIDTH
 
 
 rows = ["| series | grains | np | cells | located / rank (max) | visitors / rank (mean, max) | "
-        "weights / rank (max) | messages / rank (max) | kB / rank (max) | exchange ms / step (rank 0) |",
-        "|---|---|---|---|---|---|---|---|---|---|"]
+        "weights / rank (max) | messages / rank (max) | kB / rank (max) | exchange ms / step (rank 0) | "
+        "before: ms / step | before / now |",
+        "|---|---|---|---|---|---|---|---|---|---|---|---|"]
 for r in results:
     timed_s = f"{r['exchange'] * 1e3:.2f}" if r["np"] <= 2 else "(oversubscribed)"
+    before_s = (f"{r['before'] * 1e3:.2f} | {r['before'] / r['exchange']:.2f}" if r.get("before") else "– | –")
     rows.append(f"| {r['series']} | {r['grains']} | {r['np']} | {r['cells']} | {r['located'].max():.0f} | "
                 f"{r['visitors'].mean():.0f}, {r['visitors'].max():.0f} | {r['weights'].max():.0f} | "
-                f"{r['messages'].max():.0f} | {r['bytes'].max() / 1e3:.1f} | {timed_s} |")
+                f"{r['messages'].max():.0f} | {r['bytes'].max() / 1e3:.1f} | {timed_s} | {before_s} |")
 P = [64, 128, 256, 512, 1024]
 sizes_x = [5e4, 1e6, 1e7]
 ext = ["| grains | " + " | ".join(f"P = {p}" for p in P) + " |", "|---|" + "---|" * len(P)]
@@ -156,14 +177,15 @@ with open(os.path.join(args.out, "scaling.md"), "w") as f:
             "(steps 2..N). Ballistic case of meltdem.case.exchange_box (lattice spacing 60 µm, d 20–40 µm, "
             "cells ≈ 50 µm). np > 2 oversubscribed on 2 cores: counted, not timed.\n\n")
     f.write("\n".join(rows) + "\n\n")
-    f.write(f"Cost model fitted to the np 1 and 2 runs: a = {a * 1e9:.0f} ns per visitor, b = {b * 1e9:.1f} ns per "
-            f"weight (worst fit error {100 * fit_err:.0f} %); halo h = {h:.2f} lattice spacings; {w_per:.1f} "
-            f"weights per grain; {msgs:.1f} messages per neighbour rank and step; {bytes_per_visitor:.0f} bytes "
-            f"per remote visitor and step. ASSUMED interconnect: {LATENCY * 1e6:g} µs per message, "
-            f"{BANDWIDTH / 1e9:g} GB/s.\n\n")
+    f.write(f"Cost model fitted to the np 1 and 2 runs: c = {c * 1e9:.0f} ns per visitor and fluid step (worst "
+            f"fit error {100 * fit_err:.0f} %); halo h = {h:.2f} lattice spacings; {msgs:.1f} messages per "
+            f"neighbour rank and step and {bytes_per_grain:.0f} bytes per located grain and step (sent + "
+            "received, the largest measured: the LAMMPS and mesh decompositions need not match). ASSUMED "
+            f"interconnect: {LATENCY * 1e6:g} µs per message, {BANDWIDTH / 1e9:g} GB/s. The design before: "
+            f"c N per rank plus {OLD_BYTES_PER_GRAIN:g} bytes per grain and step, twice (allreduce), and "
+            "12 log2 P latencies.\n\n")
     f.write("Predicted exchange time per rank and fluid step (strong scaling; in brackets the design before, "
-            "every rank handling every grain with collectives of the global count, "
-            f"{OLD_BYTES_PER_GRAIN:g} bytes per grain):\n\n")
+            "every rank handling every grain with collectives of the global count):\n\n")
     f.write("\n".join(ext) + "\n")
 
 import matplotlib  # noqa: E402
