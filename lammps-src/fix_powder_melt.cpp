@@ -223,11 +223,6 @@ const double *FixPowderMelt::gravity(double *g) const
 
 /* ---------------------------------------------------------------------- */
 
-void FixPowderMelt::set_fluid_provider(const mc::FluidStateProvider *p)
-{
-  provider = p ? p : ambient.get();
-}
-
 void FixPowderMelt::hold_fluid(const std::vector<tagint> &tags, const std::vector<mc::FluidState> &states,
                                int located_by)
 {

@@ -57,9 +57,6 @@ class FixPowderMelt : public Fix {
   // called by fix powder/insert for its 'temp' keyword: 0 <= T <= Tmelt
   void set_particle_temperature(int i, double T);
 
-  // The coupling replaces 'ambient' by the continuum's local fields through this hook
-  // (nullptr restores ambient). The provider must outlive its use by this fix.
-  void set_fluid_provider(const meltdem::coupling::FluidStateProvider *provider);
   // The coupling's fluid for one interval: the local particles with these tags (ascending)
   // see these states until the next call, also after moving to another rank (the state
   // travels with the atom), and their records name located_by as the rank that gave it.

@@ -45,7 +45,7 @@ struct SampledFluid {
 SampledFluid sample_fluid(const std::vector<CellWeight> &weights, const CellFluidFields &fields);
 
 // The weighted sums sample_fluid() forms, kept apart so that they can be summed over ranks
-// before they are finished (ParallelExchange::sample_global): add each cell, then finish.
+// before they are finished (ParallelExchange::sample): add each cell, then finish.
 constexpr int kSampleSums = 18;
 void add_cell_to_sample(const CellFluidFields &fields, long cell, double weight, double share, double *sums);
 SampledFluid finish_sample(const double *sums);
