@@ -28,6 +28,10 @@ Foam::meltdem::laserHeatSource::laserHeatSource
     points_(),
     arcLength_(),
     polyline_(dict.found("path")),
+    tracks_(dict.found("tracks")),
+    knotTimes_(),
+    knotPoints_(),
+    onIntervals_(1, Pair<scalar>(tOn_, tOff_)),
     velocity_(Zero),
     speed_(0),
     tStart_(dict.getOrDefault<scalar>("tStart", 0)),
@@ -98,7 +102,11 @@ Foam::meltdem::laserHeatSource::laserHeatSource
     // the end of the motion: the path must stay in the mesh until then
     const scalar tEnd = min(tStop_, tOff_);
 
-    if (polyline_)
+    if (tracks_)
+    {
+        readTracks(dict);
+    }
+    else if (polyline_)
     {
         if (dict.found("position") || dict.found("velocity"))
         {
@@ -154,7 +162,9 @@ Foam::meltdem::laserHeatSource::laserHeatSource
         << " distribution, P = " << power_ << " W, eta = " << absorptivity_
         << ", 1/e^2 radius = " << radius_ << " m, direction " << direction_
         << ", on in [" << tOn_ << ", " << tOff_ << ")"
-        << (polyline_ ? ", polyline path" : ", linear path") << endl;
+        << (tracks_ ? ", " + Foam::name(knotTimes_.size()/2) + " tracks"
+            : polyline_ ? word(", polyline path") : word(", linear path"))
+        << endl;
 }
 
 
@@ -180,10 +190,97 @@ void Foam::meltdem::laserHeatSource::checkInBounds
 }
 
 
+void Foam::meltdem::laserHeatSource::readTracks(const dictionary& dict)
+{
+    for (const word& other : {"path", "position", "velocity", "tStop"})
+    {
+        if (dict.found(other))
+        {
+            FatalIOErrorInFunction(dict)
+                << "tracks: " << other << " cannot be combined with tracks in "
+                << dict.name() << exit(FatalIOError);
+        }
+    }
+    const List<Pair<point>> tracks(dict.get<List<Pair<point>>>("tracks"));
+    speed_ = dict.get<scalar>("speed");
+    const scalar returnTime = dict.get<scalar>("returnTime");
+    if (tracks.empty())
+    {
+        FatalIOErrorInFunction(dict)
+            << "tracks must have at least one track in " << dict.name()
+            << exit(FatalIOError);
+    }
+    if (!(speed_ > 0))
+    {
+        FatalIOErrorInFunction(dict)
+            << "speed (" << speed_ << ") must be > 0 [m/s] with tracks in "
+            << dict.name() << exit(FatalIOError);
+    }
+    if (returnTime < 0)
+    {
+        FatalIOErrorInFunction(dict)
+            << "returnTime (" << returnTime << ") must be >= 0 [s] in "
+            << dict.name() << exit(FatalIOError);
+    }
+    knotTimes_.setSize(2*tracks.size());
+    knotPoints_.setSize(2*tracks.size());
+    onIntervals_.clear();
+    scalar t = tStart_;
+    forAll(tracks, i)
+    {
+        checkInBounds(dict, "tracks", tracks[i].first());
+        checkInBounds(dict, "tracks", tracks[i].second());
+        const scalar duration = mag(tracks[i].second() - tracks[i].first())/speed_;
+        knotTimes_[2*i] = t;
+        knotPoints_[2*i] = tracks[i].first();
+        knotTimes_[2*i + 1] = t + duration;
+        knotPoints_[2*i + 1] = tracks[i].second();
+        // the track's scan, within [tOn, tOff)
+        const scalar begin = max(t, tOn_);
+        const scalar end = min(t + duration, tOff_);
+        if (end > begin)
+        {
+            onIntervals_.append(Pair<scalar>(begin, end));
+        }
+        t += duration + returnTime;
+    }
+}
+
+
 // * * * * * * * * * * * * * * * Member Functions  * * * * * * * * * * * * * //
+
+bool Foam::meltdem::laserHeatSource::on(const scalar t) const
+{
+    for (const Pair<scalar>& interval : onIntervals_)
+    {
+        if (t >= interval.first() && t < interval.second())
+        {
+            return true;
+        }
+    }
+    return false;
+}
+
 
 Foam::vector Foam::meltdem::laserHeatSource::position(const scalar t) const
 {
+    if (tracks_)
+    {
+        if (t <= knotTimes_.first())
+        {
+            return knotPoints_.first();
+        }
+        for (label i = 1; i < knotTimes_.size(); ++i)
+        {
+            if (t <= knotTimes_[i])
+            {
+                const scalar span = knotTimes_[i] - knotTimes_[i-1];
+                const scalar w = span > 0 ? (t - knotTimes_[i-1])/span : 1;
+                return knotPoints_[i-1] + w*(knotPoints_[i] - knotPoints_[i-1]);
+            }
+        }
+        return knotPoints_.last();
+    }
     const scalar tau = max(min(t, tStop_) - tStart_, scalar(0));
     if (!polyline_)
     {
@@ -211,7 +308,12 @@ Foam::scalar Foam::meltdem::laserHeatSource::onFraction() const
     {
         return on(t) ? 1 : 0;
     }
-    return max(min(t, tOff_) - max(t - dt, tOn_), scalar(0))/dt;
+    scalar lit = 0;
+    for (const Pair<scalar>& interval : onIntervals_)
+    {
+        lit += max(min(t, interval.second()) - max(t - dt, interval.first()), scalar(0));
+    }
+    return lit/dt;
 }
 
 

@@ -6,7 +6,8 @@ on written alpha fields of a 3D box (no solver).
   spherical cap; serial and np 2), integrated here from the written field (V = dx dy dz);
 - the beam convention (1/e^2 radius, I0 = 2P/(pi r^2)): un-normalised hit fraction on a flat
   surface under the whole beam = 1;
-- zero when off and when no metal is under the beam; moving linear and polyline paths;
+- zero when off and when no metal is under the beam; moving linear and polyline paths; hatched
+  tracks with the beam off while it returns (power by the lit part of each step);
 - p_v(T_v) = 0.54 p_a (Fuchs2022 eq. 10), p_v and the eq. 18 flux at 2500 K by hand, heat-loss
   integral over a flat surface = flux * area;
 - bad input stops with a FatalIOError naming the entry.
@@ -264,6 +265,22 @@ def main():
     ref = [(100e-6, 50e-6), (150e-6, 100e-6), (150e-6, 150e-6)]
     err = max(math.hypot(rr["pos"][0] - a, rr["pos"][1] - b) for rr, (a, b) in zip(rs, ref))
     ok &= check_absolute(TEST, "polyline path: max position error at 3 times [m]", err, 0.0, 1e-12)
+    # hatched tracks (serpentine, along x at y = 50 and 150 um) at 1 m/s from tStart 1e-5, the beam off
+    # for returnTime 5e-5 between them: on in [1e-5, 1.3e-4) and [1.8e-4, 3e-4)
+    tracks = "(((40e-6 50e-6 1e-4) (160e-6 50e-6 1e-4)) ((160e-6 150e-6 1e-4) (40e-6 150e-6 1e-4)))"
+    case = make_case(root, "tracks", flat, dict(base, tracks=tracks, speed=1.0, returnTime=5e-5, tStart=1e-5))
+    times = [7e-5, 1.305e-4, 1.5e-4, 1.805e-4, 2.4e-4, 1e-3]
+    _, log = check_app(case, ["-times", "(" + " ".join(map(repr, times)) + ")"])
+    rs = laser_lines(log)
+    ref = [(100e-6, 50e-6), (160e-6, 50e-6 + 1e-4 * 0.5e-6 / 5e-5), (160e-6, 90e-6), (159.5e-6, 150e-6),
+           (100e-6, 150e-6), (40e-6, 150e-6)]
+    err = max(math.hypot(rr["pos"][0] - a, rr["pos"][1] - b) for rr, (a, b) in zip(rs, ref))
+    ok &= check_absolute(TEST, "tracks: max position error at 6 times (on a track, jumping back, after) [m]",
+                         err, 0.0, 1e-12)
+    lit = [1.0, 0.5, 0.0, 0.5, 1.0, 0.0]
+    err = max(abs(rr["integral"] - f * ETA * P) for rr, f in zip(rs, lit))
+    ok &= check_absolute(TEST, "tracks: max |absorbed - eta P x lit part of the step| / eta P (on, half, returning, "
+                         "half, on, after)", err / (ETA * P), 0.0, 1e-6)
 
     # 6. evaporation (Fuchs2022 eq. 10, 18)
     case = make_case(root, "evap", flat, dict(base, position=vec((100e-6, 100e-6, z_top))))
@@ -305,6 +322,11 @@ def main():
            ("tOff", dict(base, position=vec((1e-4, 1e-4, z_top)), tOn=1e-4, tOff=0), "laser"),
            ("velocity", dict(base, position=vec((1e-4, 1e-4, z_top)), velocity="(1 0 0)", tStop=1e-3), "laser"),
            ("path", dict(base, path="((1e-4 1e-4 1e-4) (5e-4 1e-4 1e-4))", speed=1), "laser"),
+           ("returnTime", dict(base, tracks="(((5e-5 5e-5 1e-4) (1e-4 5e-5 1e-4)))", speed=1, returnTime=-1),
+            "laser"),
+           ("tracks", dict(base, tracks="(((5e-5 5e-5 1e-4) (1e-4 5e-5 1e-4)))", speed=1, returnTime=0,
+                           position=vec((1e-4, 1e-4, z_top))), "laser"),
+           ("tracks", dict(base, tracks="(((5e-5 5e-5 1e-4) (5e-4 5e-5 1e-4)))", speed=1, returnTime=0), "laser"),
            ("distribution", dict(base, position=vec((1e-4, 1e-4, z_top)), distribution="sharp"), "laser"),
            ("CT", dict(base, position=vec((1e-4, 1e-4, z_top))), "evap")]
     nbad = 0
