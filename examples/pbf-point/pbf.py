@@ -160,11 +160,49 @@ def centres(cfg):
 
 def laser_dict(cfg):
     lines = [f"power {cfg['power']!r};", f"absorptivity {ETA!r};", f"radius {cfg['rw']!r};",
-             "direction (0 -1 0);", "tOn 0;", f"tOff {cfg['t_off']!r};",
-             f"position ({cfg['x0']!r} {cfg['ly'] - cfg['dx'] / 2!r} {cfg['lz'] / 2!r});"]
+             "direction (0 -1 0);"]
+    y = cfg["ly"] - cfg["dx"] / 2
+    if cfg.get("tracks"):
+        # hatched tracks (examples/pbf-layer): scanned in order, the beam off while it returns
+        tracks = " ".join(f"(({a[0]!r} {y!r} {a[1]!r}) ({b[0]!r} {y!r} {b[1]!r}))" for a, b in cfg["tracks"])
+        lines += [f"tracks ({tracks});", f"speed {cfg['v']!r};", f"returnTime {cfg['return_time']!r};",
+                  f"tStart {cfg['t_start']!r};"]
+        return "laser\n{\n" + "".join(f"    {s}\n" for s in lines) + "}\n"
+    lines += ["tOn 0;", f"tOff {cfg['t_off']!r};", f"position ({cfg['x0']!r} {y!r} {cfg['lz'] / 2!r});"]
     if cfg["v"]:
         lines += [f"velocity ({cfg['v']!r} 0 0);", f"tStart {cfg['t_move']!r};", f"tStop {cfg['t_off']!r};"]
     return "laser\n{\n" + "".join(f"    {s}\n" for s in lines) + "}\n"
+
+
+def track_intervals(cfg):
+    """[(t_begin, t_end, (x0, z0), (x1, z1))] of each scanned track (cfg['tracks'])."""
+    out, t = [], cfg["t_start"]
+    for a, b in cfg["tracks"]:
+        dur = math.hypot(b[0] - a[0], b[1] - a[1]) / cfg["v"]
+        out.append((t, t + dur, a, b))
+        t += dur + cfg["return_time"]
+    return out
+
+
+def lit_time(cfg, t_end):
+    """Time [s] the beam was on up to t_end."""
+    if cfg.get("tracks"):
+        return sum(max(min(t_end, t1) - t0, 0.0) for t0, t1, _, _ in track_intervals(cfg))
+    return min(t_end, cfg["t_off"])
+
+
+def beam_xz(cfg, t):
+    """Beam axis (x, z) at time t (the laser's path, as meltdem::laserHeatSource walks it)."""
+    if cfg.get("tracks"):
+        knots = [(t0, a) for t0, t1, a, b in track_intervals(cfg) for t0, a in ((t0, a), (t1, b))]
+        if t <= knots[0][0]:
+            return knots[0][1]
+        for (ta, pa), (tb, pb) in zip(knots[:-1], knots[1:]):
+            if t <= tb:
+                w = (t - ta) / (tb - ta) if tb > ta else 1.0
+                return pa[0] + w * (pb[0] - pa[0]), pa[1] + w * (pb[1] - pa[1])
+        return knots[-1][1]
+    return beam_x(cfg, t), cfg["lz"] / 2
 
 
 def evaporation_dict():
@@ -204,7 +242,7 @@ fix             wy all wall/gran/powder granular hertz/material {E_DEM!r} {E_RES
 # fixed DEM step: 1/10 of the Hertz contact time of two 16 um grains at 10 m/s (1.9e-7 s);
 # fix powder/dt would follow the melting grains' shrinking radii down to 1e-10 s
 timestep        {DT_DEM!r}
-# the substrate and the solidified track are continuum metal: solid_metal makes them a wall
+{balance_line(cfg)}# the substrate and the solidified track are continuum metal: solid_metal makes them a wall
 fix             melt all powder/melt cp {M['cp']!r} Tmelt {T_MELT + DT_MUSHY / 2!r} latent {LATENT!r} temp {T0!r} solid_metal {estar_wall!r} {E_REST!r}
 compute         ke all ke
 thermo_style    custom step time dt atoms f_melt[1] f_melt[6] c_ke
@@ -213,6 +251,14 @@ thermo          1000
 dump            traj all custom 200 traj.dump id x y z vx vy vz radius f_melt[1] f_melt[2]
 dump_modify     traj time yes sort id
 """  # noqa: E501  (long lines of the LAMMPS input written verbatim)
+
+
+def balance_line(cfg):
+    """LAMMPS's fix balance by particle count (every cfg['balance'] DEM steps, shifting the
+    sub-domain planes in x and z), or nothing."""
+    if not cfg.get("balance"):
+        return ""
+    return f"fix             balance all balance {cfg['balance']} 1.05 shift xz 10 1.05\n"
 
 
 def write_bed_data(path, cfg, bed):
@@ -260,7 +306,10 @@ def refinement_dict(cfg, levels, interval):
 
 def build(case, variant, dx=None, dist=None, n=None, bed_dir=None, seed=4711, gas_cp=G["cp"], shadow=True,
           bed_process="pour", refine=0, refine_interval=1):
-    cfg = dict(VARIANTS[variant])
+    """variant: a name in VARIANTS or the configuration itself (examples/pbf-layer's, with its
+    'variant' and 'scene')."""
+    cfg = dict(VARIANTS[variant]) if isinstance(variant, str) else dict(variant)
+    variant = cfg.get("variant", variant)
     cfg["gas_cp"] = gas_cp
     cfg["shadow"] = shadow
     cfg["refine"] = refine
@@ -340,7 +389,7 @@ energyControls {{ nCorrectors 20; tolerance 1e-10; }}
     with open(os.path.join(case, "pbf.json"), "w") as f:
         json.dump(cfg, f, indent=1)
     with open(os.path.join(case, "scene.json"), "w") as f:
-        json.dump({"scene": "pbf-line" if variant.startswith("line") else "pbf-point"}, f)
+        json.dump({"scene": cfg.get("scene") or ("pbf-line" if variant.startswith("line") else "pbf-point")}, f)
     print(f"{case}: {variant}, {nc[0]} x {nc[1]} x {nc[2]} cells of {base['dx'] * 1e6:g} um"
           f"{f' refined to {h * 1e6:g} um' if refine else ''} "
           f"({D_LO / h:.1f}-{D_HI / h:.1f} cells per grain diameter, distribution {cfg['dist']}), "
@@ -467,8 +516,8 @@ def melt_pool(case, cfg):
             width = length = 0.0
         # keyhole: metal surface height in the columns near the beam axis (first alpha < 0.5
         # going up from the bottom, interpolated)
-        xb = beam_x(cfg, t)
-        near = (np.hypot(xc[None, :] - xb, zc[:, None] - cfg["lz"] / 2) <= cfg["rw"] / 2)
+        xb, zb = beam_xz(cfg, t)
+        near = (np.hypot(xc[None, :] - xb, zc[:, None] - zb) <= cfg["rw"] / 2)
         low = np.inf
         for k, i in np.argwhere(near):
             col = a[k, :, i]
@@ -521,8 +570,7 @@ def laser_energy(case, cfg):
     p = cc.particles_csv(case)
     grains_ = float(np.sum(p["laser_heat"]))
     t_end = float(p["time"][-1])
-    t_lit = min(t_end, cfg["t_off"])
-    return cont, grains_, ETA * cfg["power"] * t_lit, evap, t_end
+    return cont, grains_, ETA * cfg["power"] * lit_time(cfg, t_end), evap, t_end
 
 
 def summary(case):
@@ -549,7 +597,7 @@ def summary(case):
           (f"keyhole_depth_max_{unit}" if k == "keyhole" else "peak_metal_T_K")] = pool[k][0] * scale
         s[f"{k}_time_s"] = pool[k][1]
     s.update(grains(case, cfg))
-    if cfg["v"]:
+    if cfg["v"] and not cfg.get("tracks"):
         # the moving pool: widest written pool in the second half of the travel (Eagar-Tsai is
         # the quasi-steady pool), and the profile along the track
         late = [r for r in series

@@ -7,7 +7,7 @@ three copies are killed with SIGKILL to their process group, as a batch system w
   write     while a write time is being written (its folder has just appeared),
   twice     before the second checkpoint, and again while the resumed run runs,
 
-and resumed until they end. Kinds (usage: kill_resume_kinds.py coupled|coupled-implicit|continuum|dem):
+and resumed until they end. Kinds (usage: kill_resume_kinds.py coupled|coupled-implicit|coupled-balance|continuum|dem):
 
   coupled    lmd-track's CI case cut to 0.09 s (powder inserted during the run, melting,
              solid-metal contact, the laser), write times 0.03 s apart, binary fields: the
@@ -17,6 +17,12 @@ and resumed until they end. Kinds (usage: kill_resume_kinds.py coupled|coupled-i
              all segments equal at every step (no dip at the resume).
   coupled-implicit  the same with particles { heatExchange implicit; } (the heat the energy
              solve owes each grain is in the checkpoint)
+  coupled-balance  the coupled case on 2 ranks (`meltdem run --np 2`) with LAMMPS's `fix balance`
+             by particle count every 200 DEM steps, killed between checkpoints only: the resumed run
+             re-balances from the restart's layout, so the grains' ranks (and the order of the
+             exchange's sums) may differ from the uninterrupted run's: the ledger totals equal it to
+             1e-10 of the largest total per step, the same rows and steps, the same grains at the end,
+             and the ranks' grain counts balanced (largest / mean <= 1.05 + one grain).
   continuum  the same track without powder (laser, melting, flow; meltdemBalance added): the
              fields at the end identical byte for byte, the balance rows over all segments
              equal, the summary's absorbed laser energy equal.
@@ -50,7 +56,8 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 
 
 IMPLICIT = sys.argv[1] == "coupled-implicit"
-KIND = "coupled" if IMPLICIT else sys.argv[1]
+BALANCE = sys.argv[1] == "coupled-balance"
+KIND = "coupled" if IMPLICIT or BALANCE else sys.argv[1]
 T = f"cli.kill_resume.{sys.argv[1].replace('-', '.')}"
 ok = True
 work = tempfile.mkdtemp(prefix=f"meltdem-kill-{KIND}-")
@@ -86,13 +93,20 @@ def build():
         assert "demStepsPerFluidStep auto;" in text
         open(props, "w").write(text.replace("demStepsPerFluidStep auto;",
                                             "demStepsPerFluidStep auto;\n    heatExchange implicit;"))
+    if BALANCE:
+        inp = os.path.join(base, "in.particles")
+        text = open(inp).read()
+        anchor = "fix             integrate grains nve/sphere\n"
+        assert anchor in text
+        balance = "fix             balance all balance 200 1.05 shift xyz 10 1.05\n"
+        open(inp, "w").write(text.replace(anchor, anchor + balance))
     if KIND == "continuum":
         with open(os.path.join(base, "system", "controlDict"), "a") as f:
             f.write("\nfunctions { balance { type meltdemBalance; } }\n")
     return base
 
 
-ARGS = ["--checkpoint-every", "20000"] if KIND == "dem" else []
+ARGS = ["--checkpoint-every", "20000"] if KIND == "dem" else (["--np", "2"] if BALANCE else [])
 
 
 def start(case, resume=False):
@@ -148,6 +162,8 @@ SCENARIOS = {
     "write": [lambda c: write_started(c, W)],
     "twice": [lambda c: progress(c) >= (1.5 * WRITE if KIND != "dem" else 30000), lambda c: progress(c) >= B2],
 }
+if BALANCE:
+    SCENARIOS = {"between": [between]}
 
 base = build()
 whole = os.path.join(work, "whole")
@@ -167,7 +183,25 @@ for name, kills in SCENARIOS.items():
     if rc != 0:
         continue
 
-    if KIND == "coupled":
+    if BALANCE:
+        from meltdem.case import coupled as cc
+        la, lb = cc.ledger(whole), cc.ledger(case)
+        ok &= check_absolute(T, f"{name}: ledger rows (fluid steps)", len(lb), len(la), 0)
+        same_t = len(la) == len(lb) and np.array_equal(la["time"], lb["time"])
+        ok &= check_absolute(T, f"{name}: ledger times identical", int(same_t), 1, 0)
+        ok &= check_at_most(T, f"{name}: ledger totals vs the uninterrupted run (relative to the largest total)",
+                            cc.ledger_totals_difference(lb, la) if same_t else 1.0, 1e-10)
+        pa, pb = cc.particles_csv(whole), cc.particles_csv(case)
+        ok &= check_absolute(T, f"{name}: grains in the last particles.csv row", int(pb["particles"][-1]),
+                             int(pa["particles"][-1]), 0)
+        rows = list(csv.DictReader(open(os.path.join(case, "postProcessing", "particleLedger", "ranks.csv"))))
+        last = max(float(r["time"]) for r in rows)
+        owned = [int(r["particles"]) for r in rows if float(r["time"]) == last]
+        worst = max(owned) / max(np.mean(owned), 1e-30)
+        ok &= check_at_most(T, f"{name}: grains per rank at the end, largest / mean ({owned})", worst,
+                            1.05 + 1 / max(np.mean(owned), 1))
+        ok &= cc.check_balances(T, lb)
+    elif KIND == "coupled":
         for f in ("ledger.csv", "particles.csv"):
             a = list(csv.reader(open(os.path.join(whole, "postProcessing", "particleLedger", f))))
             b = list(csv.reader(open(os.path.join(case, "postProcessing", "particleLedger", f))))
@@ -192,7 +226,7 @@ for name, kills in SCENARIOS.items():
         for f in ("T", "U", "alpha.metal", "p_rgh"):
             same = open(os.path.join(whole, tend, f), "rb").read() == open(os.path.join(case, tend, f), "rb").read()
             ok &= check_absolute(T, f"{name}: {tend}/{f} identical byte for byte", int(same), 1, 0)
-    if KIND in ("coupled", "continuum"):
+    if KIND in ("coupled", "continuum") and not BALANCE:
         _, ra = casedata.balance_rows(whole)
         _, rb = casedata.balance_rows(case)
         cols = [c for c in ra.dtype.names if c != "time"] if ra is not None else []
