@@ -19,6 +19,7 @@
 #include "utils.h"
 
 #include "meltdem/coupling/hertz_restitution.h"
+#include "meltdem/coupling/held_exchange.h"
 #include "meltdem/coupling/particle_forces.h"
 #include "meltdem/coupling/solid_metal_contact.h"
 
@@ -36,8 +37,7 @@ namespace mc = meltdem::coupling;
 
 FixPowderMelt::FixPowderMelt(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), drag_model(mc::DragModel::Thesis), T0(0.0), ambient_flag(0), provider(nullptr), in_setup(0),
-    solid_flag(0), solid_estar(0.0), solid_alpha(0.0), melt(nullptr), exchange(nullptr), nmax_exchange(0),
-    vector_dirty(1)
+    solid_flag(0), solid_estar(0.0), solid_alpha(0.0), melt(nullptr), coef(nullptr), coef_tol(1e-2), vector_dirty(1)
 {
   if (strcmp(update->unit_style, "si") != 0)
     error->all(FLERR, "Fix powder/melt requires units si (its heat and drag laws use SI values)");
@@ -127,6 +127,12 @@ FixPowderMelt::FixPowderMelt(LAMMPS *lmp, int narg, char **arg) :
       else
         error->all(FLERR, "Fix powder/melt drag model {} unknown (use thesis or schiller-naumann)", arg[iarg + 1]);
       iarg += 2;
+    } else if (strcmp(arg[iarg], "coefficient_tolerance") == 0) {
+      value("coefficient_tolerance", 1);
+      coef_tol = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+      if (!(coef_tol >= 0.0) || !(coef_tol < 1.0))
+        error->all(FLERR, "Fix powder/melt coefficient_tolerance must be in [0, 1), not {}", coef_tol);
+      iarg += 2;
     } else
       error->all(FLERR, "Illegal fix powder/melt command: unknown keyword {}", arg[iarg]);
   }
@@ -161,7 +167,7 @@ FixPowderMelt::FixPowderMelt(LAMMPS *lmp, int narg, char **arg) :
 
   held = nullptr;
   held_flag = 0;
-  maxexchange = NCOL + NHELD;  // per atom in Comm::exchange()
+  maxexchange = NCOL + NHELD + NCOEF;  // per atom in Comm::exchange()
   grow_arrays(atom->nmax);
   atom->add_callback(Atom::GROW);
   atom->add_callback(Atom::RESTART);
@@ -176,7 +182,7 @@ FixPowderMelt::~FixPowderMelt()
   atom->delete_callback(id, Atom::RESTART);
   memory->destroy(melt);
   memory->destroy(held);
-  delete[] exchange;
+  memory->destroy(coef);
 }
 
 /* ---------------------------------------------------------------------- */
@@ -201,6 +207,10 @@ void FixPowderMelt::init()
   gravity_fixes.clear();
   for (int i = 0; i < modify->nfix; i++)
     if (utils::strmatch(modify->fix[i]->style, "^gravity")) gravity_fixes.push_back(i);
+
+  // particles that left the group since the last run are no longer held
+  for (int i = 0; i < atom->nlocal; i++)
+    if (!(atom->mask[i] & groupbit)) release(i);
 
   if (!provider && !held_flag && comm->me == 0)
     error->warning(FLERR, "Fix powder/melt has no fluid (no ambient keyword, no coupling): "
@@ -231,6 +241,14 @@ void FixPowderMelt::hold_fluid(const std::vector<tagint> &tags, const std::vecto
   for (int i = 0; i < atom->nlocal; i++) {
     const auto it = std::lower_bound(tags.begin(), tags.end(), atom->tag[i]);
     const bool found = it != tags.end() && *it == atom->tag[i];
+    // a particle keeps its held coefficients while the fluid's properties it sees stay the same
+    if (!(found && held[i][HELD_SET] != 0.0 && coef[i][C_STATE] == 1.0)) {
+      release(i);
+    } else {
+      double q[mc::kFluidStateDoubles];
+      mc::pack_fluid_state(states[std::size_t(it - tags.begin())], q);
+      if (!same_coefficients(&held[i][HELD_STATE], q)) release(i);
+    }
     held[i][HELD_SET] = found ? 1.0 : 0.0;
     held[i][HELD_BY] = found ? double(located_by) : -1.0;
     if (found) mc::pack_fluid_state(states[std::size_t(it - tags.begin())], &held[i][HELD_STATE]);
@@ -340,18 +358,91 @@ void FixPowderMelt::parcel_state(int i, mc::FluidState &fluid)
 }
 
 /* ----------------------------------------------------------------------
+   the coefficients held over the interval's sub-steps: the fluid is frozen, so drag and
+   heat depend on the step only through the slip, the particle's size and mass and dt
+------------------------------------------------------------------------- */
+
+bool FixPowderMelt::same_coefficients(const double *q, const double *p)
+{
+  mc::FluidState a, b;
+  mc::unpack_fluid_state(q, a);
+  mc::unpack_fluid_state(p, b);
+  return a.k == b.k && a.rho == b.rho && a.mu == b.mu && a.cp == b.cp && a.thermal == b.thermal && a.mass == b.mass &&
+         a.capacity == b.capacity && a.heat_source == b.heat_source && a.implicit_heat == b.implicit_heat &&
+         a.solid.present == b.solid.present;
+}
+
+int FixPowderMelt::atom_nlocal() const
+{
+  return atom->nlocal;
+}
+
+double FixPowderMelt::interval_value(int i, int col) const
+{
+  const double *c = coef[i];
+  if (c[C_STATE] != 1.0) return melt[i][col];
+  if (col >= P_UX && col <= P_UZ) return c[C_PUX + col - P_UX];
+  if (col >= I_DX && col <= I_DZ) return c[C_IDX + col - I_DX];
+  if (col == P_T) return c[C_PT];
+  if (col == I_HEAT) return c[C_IHEAT];
+  return melt[i][col];
+}
+
+double FixPowderMelt::hold_coefficients(int i, const mc::FluidState &fluid, double dt)
+{
+  double *c = coef[i];
+  if (melt[i][MASS0] <= 0.0) melt[i][MASS0] = atom->rmass[i];  // inserted during the run
+  const bool every_step = fluid.heat_source > 0.0 || (solid_flag && fluid.solid.present) || fluid.implicit_heat;
+  c[C_STATE] = every_step ? 2.0 : 1.0;
+  if (every_step) return -1.0;
+  mc::HeldExchangeInput in;
+  in.model = drag_model;
+  in.rho = fluid.rho, in.mu = fluid.mu, in.cp = fluid.cp;
+  in.k = fluid.thermal ? fluid.k : 0.0;
+  in.C_fluid = fluid.capacity;
+  in.d = 2.0 * atom->radius[i], in.m = atom->rmass[i], in.cp_particle = mat.cp;
+  in.dt = dt;
+  const double *v = atom->v[i];
+  for (int k = 0; k < 3; k++) in.s2 += (melt[i][P_UX + k] - v[k]) * (melt[i][P_UX + k] - v[k]);
+  in.tol = coef_tol;
+  mc::HeldExchange h;
+  try {
+    h = mc::hold_exchange(in);
+  } catch (std::invalid_argument &e) {
+    error->one(FLERR, "Fix powder/melt: atom {}: {}", atom->tag[i], e.what());
+  }
+  c[C_Y0] = h.beta.y0;
+  c[C_BETA0] = h.beta.v0, c[C_BETA1] = h.beta.slope;
+  c[C_E10] = h.expm1_rate.v0, c[C_E11] = h.expm1_rate.slope;
+  // equal temperatures stay equal: only this exchange would change either over the interval
+  const double h_now = melt[i][HSPEC];
+  const bool level = h_now < mat.cp * mat.Tmelt && h_now / mat.cp == melt[i][P_T];
+  c[C_SHARE] = level ? 0.0 : h.share;
+  c[C_LO] = h.lo, c[C_HI] = h.hi;
+  // the two-body cap of the drag coefficient (particle_forces.h)
+  c[C_CAP] = mc::two_body_drag_coefficient(HUGE_VAL, in.m, fluid.mass, dt);
+  c[C_VB] = -fluid.rho * M_PI / 6.0 * in.d * in.d * in.d;
+  c[C_DTMF] = fluid.mass > 0.0 ? dt / fluid.mass : 0.0;
+  c[C_CF] = fluid.capacity;
+  c[C_D] = in.d;
+  c[C_DT] = dt;
+  // the held columns
+  for (int k = 0; k < 3; k++) {
+    c[C_PUX + k] = melt[i][P_UX + k];
+    c[C_IDX + k] = melt[i][I_DX + k];
+  }
+  c[C_PT] = melt[i][P_T];
+  c[C_IHEAT] = melt[i][I_HEAT];
+  return in.s2;
+}
+
+/* ----------------------------------------------------------------------
    drag and buoyancy (eq. 2.14); gravity itself is fix gravity's
 ------------------------------------------------------------------------- */
 
 void FixPowderMelt::post_force(int /*vflag*/)
 {
   const int nlocal = atom->nlocal;
-  if (nmax_exchange < atom->nmax) {
-    delete[] exchange;
-    nmax_exchange = atom->nmax;
-    exchange = new StepExchange[nmax_exchange];
-  }
-  for (int i = 0; i < nlocal; i++) exchange[i] = StepExchange();
   if (!provider && !held_flag) return;
 
   double **x = atom->x;
@@ -366,6 +457,40 @@ void FixPowderMelt::post_force(int /*vflag*/)
 
   mc::FluidState fluid;
   for (int i = 0; i < nlocal; i++) {
+    // (held coefficients belong to a solid particle of the group: tested first)
+    double s2 = -1.0;
+    if (in_setup) {
+      // the run's first forces: held particles with their lines, nothing booked
+      if (holds(i, radius, dt) && (s2 = held_slip2(i, v[i])) >= 0.0) {
+        const double *c = coef[i];
+        const double y = c[C_BETA1] == 0.0 ? c[C_Y0] : mc::held_variable(s2);
+        const double beta = std::min(c[C_BETA0] + c[C_BETA1] * (y - c[C_Y0]), c[C_CAP]);
+        for (int k = 0; k < 3; k++) f[i][k] += beta * (c[C_PUX + k] - v[i][k]) + c[C_VB] * g[k];
+        continue;
+      }
+      s2 = -1.0;
+    } else if (!(holds(i, radius, dt) && (s2 = held_slip2(i, v[i])) >= 0.0)) {
+      // (re)evaluate: a new interval, a new size, or the slip left the window
+      release(i);
+      if (!(mask[i] & groupbit) || melt[i][MOLTEN] != 0.0 || !fluid_at(i, fluid)) continue;
+      parcel_state(i, fluid);
+      s2 = hold_coefficients(i, fluid, dt);
+    }
+    if (s2 >= 0.0) {
+      // held coefficients: drag against the parcel's velocity now, buoyancy with g now
+      double *c = coef[i];
+      const double y = c[C_BETA1] == 0.0 ? c[C_Y0] : mc::held_variable(s2);
+      const double beta = std::min(c[C_BETA0] + c[C_BETA1] * (y - c[C_Y0]), c[C_CAP]);
+      for (int k = 0; k < 3; k++) {
+        const double drag = beta * (c[C_PUX + k] - v[i][k]);
+        c[C_PUX + k] -= drag * c[C_DTMF];
+        f[i][k] += drag + c[C_VB] * g[k];
+        c[C_IDX + k] += drag * dt;
+      }
+      continue;
+    }
+    // every step: light, solid-metal contact, implicit heat, and the setup's forces
+    release(i);
     if (!(mask[i] & groupbit) || melt[i][MOLTEN] != 0.0) continue;
     if (!fluid_at(i, fluid)) continue;
     parcel_state(i, fluid);
@@ -400,7 +525,6 @@ void FixPowderMelt::post_force(int /*vflag*/)
     }
     for (int k = 0; k < 3; k++) {
       f[i][k] += F.drag[k] + F.buoyancy[k];
-      exchange[i].drag[k] = F.drag[k];
       if (!in_setup) melt[i][I_DX + k] += F.drag[k] * dt;
     }
   }
@@ -422,16 +546,35 @@ void FixPowderMelt::end_of_step()
   double *rmass = atom->rmass;
   int *mask = atom->mask;
   const double dt = update->dt;
-
-  if (nmax_exchange < atom->nmax) {
-    delete[] exchange;
-    nmax_exchange = atom->nmax;
-    exchange = new StepExchange[nmax_exchange];
-  }
+  const double hm = mat.cp * mat.Tmelt;
 
   int nmolten = 0;
+  mc::ExactSum held_heat;  // the held steps' heat, booked after the loop (kept in registers)
   mc::FluidState fluid;
   for (int i = 0; i < nlocal && (provider || held_flag); i++) {
+    // (held coefficients belong to a solid particle of the group: tested first)
+    double s2 = 0.0;
+    if (holds(i, radius, dt) && (coef[i][C_SHARE] == 0.0 || (s2 = held_slip2(i, v[i])) >= 0.0)) {
+      // held coefficients: the sensible heat step of heat_melt_step(_two_body) while it stays
+      // below melting (nothing to do without heat exchange or without a difference)
+      double *c = coef[i];
+      if (c[C_SHARE] == 0.0) continue;
+      const double h = melt[i][HSPEC];
+      const double T = h / mat.cp, D0 = c[C_PT] - T;
+      if (D0 == 0.0) continue;
+      const double y = mc::held_variable(s2);
+      const double h_new = mat.cp * (T - c[C_SHARE] * D0 * (c[C_E10] + c[C_E11] * (y - c[C_Y0])));
+      if (h < hm && h_new < hm) {
+        const double heat = rmass[i] * (h_new - h);
+        if (c[C_CF] > 0.0) c[C_PT] -= heat / c[C_CF];
+        held_heat.add(heat);
+        melt[i][HSPEC] = h_new;
+        c[C_IHEAT] += heat;
+        melt[i][TEMP] = h_new / mat.cp;  // below melting
+        continue;
+      }
+    }
+    release(i);
     if (!(mask[i] & groupbit) || melt[i][MOLTEN] != 0.0) continue;
     if (melt[i][MASS0] <= 0.0) melt[i][MASS0] = rmass[i];  // inserted during the run
     if (!fluid_at(i, fluid)) continue;
@@ -484,35 +627,37 @@ void FixPowderMelt::end_of_step()
       error->one(FLERR, "Fix powder/melt: atom {}: {}", atom->tag[i], e.what());
     }
 
-    StepExchange &ex = exchange[i];
-    ex.mass = r.mass_melted;
-    ex.enthalpy = r.enthalpy_out;
-    ex.heat = r.heat;
     ledger[0].add_difference(m, r.m);  // exact: the totals telescope to the initial mass
     ledger[1].add(r.enthalpy_out);
+    double momentum[3];
     for (int k = 0; k < 3; k++) {
-      ex.momentum[k] = r.mass_melted * v[i][k];
-      ledger[2 + k].add(ex.momentum[k]);
+      momentum[k] = r.mass_melted * v[i][k];
+      ledger[2 + k].add(momentum[k]);
     }
     ledger[5].add(r.heat);
     melt[i][HSPEC] = r.h;
     melt[i][I_MASS] += r.mass_melted;
     melt[i][I_ENTH] += r.enthalpy_out;
-    for (int k = 0; k < 3; k++) melt[i][I_PX + k] += ex.momentum[k];
+    for (int k = 0; k < 3; k++) melt[i][I_PX + k] += momentum[k];
     melt[i][I_HEAT] += r.heat;
 
     if (r.fully_molten) {
       // keep mass and radius until the atom is deleted at the next pre_exchange (the
       // integrator divides by them); it rests there, no force acts on it before
       melt[i][MOLTEN] = 1.0;
+      coef[i][C_STATE] = 0.0;
       for (int k = 0; k < 3; k++) v[i][k] = f[i][k] = omega[i][k] = torque[i][k] = 0.0;
       nmolten++;
     } else if (r.mass_melted > 0.0) {
       rmass[i] = r.m;
       radius[i] = 0.5 * r.d;
+      coef[i][C_STATE] = 0.0;
     }
     refresh_output(i);
   }
+
+  ledger[5].add(held_heat.hi());
+  ledger[5].add(held_heat.lo());
 
   int nmolten_all = 0;
   MPI_Allreduce(&nmolten, &nmolten_all, 1, MPI_INT, MPI_SUM, world);
@@ -599,6 +744,7 @@ void FixPowderMelt::grow_arrays(int nmax)
 {
   memory->grow(melt, nmax, NCOL, "powder/melt:melt");
   memory->grow(held, nmax, NHELD, "powder/melt:held");
+  memory->grow(coef, nmax, NCOEF, "powder/melt:coef");
   array_atom = melt;
 }
 
@@ -606,6 +752,7 @@ void FixPowderMelt::copy_arrays(int i, int j, int /*delflag*/)
 {
   for (int k = 0; k < NCOL; k++) melt[j][k] = melt[i][k];
   for (int k = 0; k < NHELD; k++) held[j][k] = held[i][k];
+  for (int k = 0; k < NCOEF; k++) coef[j][k] = coef[i][k];
 }
 
 // new atoms start at temp T0; the initial mass is taken at the first step, after the
@@ -620,28 +767,34 @@ void FixPowderMelt::set_arrays(int i)
   for (int k = S_OFFSET; k < NCOL; k++) melt[i][k] = 0.0;
   held[i][HELD_SET] = 0.0;
   held[i][HELD_BY] = -1.0;
+  coef[i][C_STATE] = 0.0;
 }
 
 int FixPowderMelt::pack_exchange(int i, double *buf)
 {
   for (int k = 0; k < NCOL; k++) buf[k] = melt[i][k];
   for (int k = 0; k < NHELD; k++) buf[NCOL + k] = held[i][k];
-  return NCOL + NHELD;
+  for (int k = 0; k < NCOEF; k++) buf[NCOL + NHELD + k] = coef[i][k];
+  return NCOL + NHELD + NCOEF;
 }
 
 int FixPowderMelt::unpack_exchange(int nlocal, double *buf)
 {
   for (int k = 0; k < NCOL; k++) melt[nlocal][k] = buf[k];
   for (int k = 0; k < NHELD; k++) held[nlocal][k] = buf[NCOL + k];
-  return NCOL + NHELD;
+  for (int k = 0; k < NCOEF; k++) coef[nlocal][k] = buf[NCOL + NHELD + k];
+  return NCOL + NHELD + NCOEF;
 }
 
 int FixPowderMelt::pack_restart(int i, double *buf)
 {
-  // buf[0] = count, as other fixes read it to skip this fix's values
-  buf[0] = NCOL + 1;
+  // buf[0] = count, as other fixes read it to skip this fix's values; the held coefficients and
+  // the fluid they were held for, so that a resumed run holds them as the uninterrupted one
+  buf[0] = NCOL + NCOEF + NHELD + 1;
   for (int k = 0; k < NCOL; k++) buf[k + 1] = melt[i][k];
-  return NCOL + 1;
+  for (int k = 0; k < NCOEF; k++) buf[NCOL + k + 1] = coef[i][k];
+  for (int k = 0; k < NHELD; k++) buf[NCOL + NCOEF + k + 1] = held[i][k];
+  return NCOL + NCOEF + NHELD + 1;
 }
 
 void FixPowderMelt::unpack_restart(int nlocal, int nth)
@@ -649,25 +802,31 @@ void FixPowderMelt::unpack_restart(int nlocal, int nth)
   double **extra = atom->extra;
   int m = 0;
   for (int i = 0; i < nth; i++) m += static_cast<int>(extra[nlocal][m]);
-  // restarts of earlier versions hold fewer (interval scratch) columns: those start at 0
-  const int stored = std::min(static_cast<int>(extra[nlocal][m]) - 1, static_cast<int>(NCOL));
+  // restarts of earlier versions hold fewer (interval scratch) columns, which start at 0, and
+  // no held coefficients, which are then evaluated again
+  const int stored = static_cast<int>(extra[nlocal][m]) - 1;
   m++;
   for (int k = 0; k < NCOL; k++) melt[nlocal][k] = k < stored ? extra[nlocal][m++] : 0.0;
+  coef[nlocal][C_STATE] = 0.0;
+  if (stored >= NCOL + NCOEF + NHELD) {
+    for (int k = 0; k < NCOEF; k++) coef[nlocal][k] = extra[nlocal][m++];
+    for (int k = 0; k < NHELD; k++) held[nlocal][k] = extra[nlocal][m++];
+  }
 }
 
 int FixPowderMelt::size_restart(int /*nlocal*/)
 {
-  return NCOL + 1;
+  return NCOL + NCOEF + NHELD + 1;
 }
 
 int FixPowderMelt::maxsize_restart()
 {
-  return NCOL + 1;
+  return NCOL + NCOEF + NHELD + 1;
 }
 
 double FixPowderMelt::memory_usage()
 {
-  return (double)atom->nmax * (NCOL + NHELD) * sizeof(double) + (double)nmax_exchange * sizeof(StepExchange);
+  return (double)atom->nmax * (NCOL + NHELD + NCOEF) * sizeof(double);
 }
 
 /* ----------------------------------------------------------------------
@@ -688,8 +847,8 @@ mc::ExchangeRecord FixPowderMelt::record(int i) const
   r.mass_out = melt[i][I_MASS];
   r.enthalpy_out = melt[i][I_ENTH];
   r.momentum_out = Eigen::Vector3d(melt[i][I_PX], melt[i][I_PY], melt[i][I_PZ]);
-  r.heat_absorbed = melt[i][I_HEAT];
-  r.impulse_from_fluid = Eigen::Vector3d(melt[i][I_DX], melt[i][I_DY], melt[i][I_DZ]);
+  r.heat_absorbed = interval_value(i, I_HEAT);
+  r.impulse_from_fluid = Eigen::Vector3d(interval_value(i, I_DX), interval_value(i, I_DY), interval_value(i, I_DZ));
   r.external_heat = melt[i][I_LASER];
   r.conductance = molten ? 0.0 : melt[i][COND];
   r.heat_capacity = r.mass * mat.cp;
@@ -731,8 +890,20 @@ void FixPowderMelt::records(std::vector<mc::ExchangeRecord> &out, bool with_fini
 void FixPowderMelt::reset_interval()
 {
   finished.clear();
-  for (int i = 0; i < atom->nlocal; i++)
+  for (int i = 0; i < atom->nlocal; i++) {
     for (int k = I_MASS; k <= P_T; k++) melt[i][k] = 0.0;
+    double *c = coef[i];
+    if (c[C_STATE] != 1.0) continue;
+    // held: the parcel starts at the fluid's velocity and temperature, the interval's sums at 0
+    // (parcel_state at the first step, as for a particle not held)
+    const double *q = &held[i][HELD_STATE];
+    mc::FluidState fluid;
+    mc::unpack_fluid_state(q, fluid);
+    for (int k = 0; k < 3; k++) c[C_PUX + k] = fluid.U[k], c[C_IDX + k] = 0.0;
+    c[C_PT] = fluid.T;
+    c[C_IHEAT] = 0.0;
+    melt[i][P_SET] = 1.0;
+  }
 }
 
 void FixPowderMelt::set_heat_owed(const std::vector<tagint> &tags, const std::vector<double> &heat)

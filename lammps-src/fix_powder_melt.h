@@ -64,17 +64,6 @@ class FixPowderMelt : public Fix {
   void hold_fluid(const std::vector<tagint> &tags, const std::vector<meltdem::coupling::FluidState> &states,
                   int located_by);
 
-  // What particle i (local index) handed over / absorbed during the last step; the
-  // coupling distributes these to cells. Valid after end_of_step until the next step.
-  struct StepExchange {
-    double mass = 0.0;                     // molten mass [kg] (eq. 2.3)
-    double enthalpy = 0.0;                 // enthalpy with it [J] (eq. 2.9)
-    double momentum[3] = {0.0, 0.0, 0.0};  // momentum with it [kg m/s] (eq. 2.11)
-    double heat = 0.0;                     // heat absorbed from the fluid [J] (eq. 2.13)
-    double drag[3] = {0.0, 0.0, 0.0};      // drag force of this step [N] (eq. 2.14)
-  };
-  const StepExchange *step_exchange() const { return exchange; }
-
   // The coupling's view over a coupling interval of several steps (sub-cycles): what each
   // particle handed over and took from the fluid since the last reset_interval(), one
   // record per particle of the group now present on this rank plus one per particle
@@ -162,9 +151,94 @@ class FixPowderMelt : public Fix {
   // the fluid particle i sees this step (held or from the provider); false: none
   bool fluid_at(int i, meltdem::coupling::FluidState &out) const;
 
-  double **melt;           // per-atom state, columns above
-  StepExchange *exchange;  // per-atom exchange of the last step
-  int nmax_exchange;
+  double **melt;  // per-atom state, columns above
+
+  // per-atom exchange coefficients held over the sub-steps of an interval
+  // (meltdem/coupling/held_exchange.h); they travel with the atom and are in restart files, so
+  // a run does not depend on the rank count or on a restart. C_STATE 0: to evaluate, 1: held, 2: evaluated
+  // every step (light, solid-metal contact, implicit heat). Then the drag coefficient and the
+  // heat step's expm1 as lines in the root of the slip speed (C_Y0, value, slope), their
+  // window of slip^2, the two-body cap of the drag coefficient, the buoyancy volume term
+  // -rho pi d^3/6, dt over the parcel's mass, the parcel's heat capacity, the heat share (0: no
+  // heat this interval, also where particle and parcel start equally warm), and the diameter
+  // and step they hold for. While held, the
+  // columns a held step changes live here (C_PUX.. = P_UX.., C_PT = P_T, C_IDX.. = I_DX..,
+  // C_IHEAT = I_HEAT) and go back to melt when released (release()), so a held step reads and
+  // writes three cache lines of this row and one of melt
+  enum {
+    C_STATE,
+    C_D,
+    C_DT,
+    C_SHARE,
+    C_LO,
+    C_HI,
+    C_Y0,
+    C_BETA0,
+    C_BETA1,
+    C_CAP,
+    C_VB,
+    C_DTMF,
+    C_PUX,
+    C_PUY,
+    C_PUZ,
+    C_IDX,
+    C_IDY,
+    C_IDZ,
+    C_E10,
+    C_E11,
+    C_CF,
+    C_PT,
+    C_IHEAT,
+    C_SPARE,
+    NCOEF
+  };
+  double **coef;
+  double coef_tol;  // keyword coefficient_tolerance
+  // evaluate particle i's coefficients for the fluid it sees (after parcel_state) and step dt;
+  // returns its squared slip, or -1 where it is evaluated every step
+  double hold_coefficients(int i, const meltdem::coupling::FluidState &fluid, double dt);
+  // particle i's held coefficients are valid for this step: its size and dt unchanged (the
+  // fix invalidates them when it melts mass away)
+  // (inline: a style library is built with -fPIC, where out-of-line members are not inlined)
+  inline bool holds(int i, const double *radius, double dt) const
+  {
+    const double *c = coef[i];
+    return c[C_STATE] == 1.0 && c[C_D] == 2.0 * radius[i] && c[C_DT] == dt;
+  }
+  // give the held columns back to melt; the coefficients are evaluated again at the next use
+  inline void release(int i)
+  {
+    double *c = coef[i];
+    if (c[C_STATE] == 1.0) {
+      for (int k = 0; k < 3; k++) {
+        melt[i][P_UX + k] = c[C_PUX + k];
+        melt[i][I_DX + k] = c[C_IDX + k];
+      }
+      melt[i][P_T] = c[C_PT];
+      melt[i][I_HEAT] = c[C_IHEAT];
+      melt[i][P_SET] = 1.0;  // the parcel was taken this interval
+    }
+    c[C_STATE] = 0.0;
+  }
+  void release_all()
+  {
+    for (int i = 0; i < atom_nlocal(); i++) release(i);
+  }
+  int atom_nlocal() const;
+  // the held fluid states q and p give the same held coefficients: they differ at most in the
+  // fluid's velocity and temperature, which only start the parcel
+  static bool same_coefficients(const double *q, const double *p);
+  // column col (P_* or I_*) of particle i, wherever it lives now
+  double interval_value(int i, int col) const;
+  // the squared slip of particle i (velocity v) against its parcel; negative when outside the
+  // held window
+  inline double held_slip2(int i, const double *v) const
+  {
+    const double *p = &coef[i][C_PUX];
+    const double s0 = p[0] - v[0], s1 = p[1] - v[1], s2 = p[2] - v[2];
+    const double s = s0 * s0 + s1 * s1 + s2 * s2;
+    return s >= coef[i][C_LO] && s <= coef[i][C_HI] ? s : -1.0;
+  }
 
   // cumulative ledger (this rank): molten mass, enthalpy, momentum x/y/z, heat absorbed
   meltdem::coupling::ExactSum ledger[6];
