@@ -62,8 +62,19 @@ double WallGranPowderCoeffs::damping_correction(const double *normal_coeffs, dou
                                                 double reff, double meff, double dt, double speed_factor) const
 {
   if (damping != DAMP_TSUJI_EXACT || e <= 0.0) return 0.0;
+  // apart now and a step ago: no contact this step, no correction (most grains near a wall)
+  if (delta <= 0.0 && delta + dt * separation_rate <= 0.0) return 0.0;
   const double hertz_k = normal_coeffs[0] * std::sqrt(reff);
-  const double h = speed_factor > 0.0 ? meltdem::coupling::contact_step(speed_factor, hertz_k, meff) : 0.0;
+  double h = 0.0;
+  if (speed_factor > 0.0) {
+    // meltdem::coupling::contact_step, its pow kept for the next contact of the same K/m*
+    const double k_over_m = hertz_k / meff;
+    if (k_over_m != last_k_over_m) {
+      last_k_over_m = k_over_m;
+      last_k_over_m_04 = std::pow(k_over_m, 0.4);
+    }
+    h = speed_factor * last_k_over_m_04;
+  }
   return meltdem::coupling::stepped_damping_correction(stepped.alpha(h), normal_coeffs[1], hertz_k, meff, delta,
                                                        separation_rate, dt);
 }
@@ -243,11 +254,12 @@ void FixWallGranPowder::post_force(int vflag)
   const double speed = coeffs.contact_speed(), speed_factor = speed > 0.0 ? update->dt * pow(speed, 0.2) : 0.0;
   for (int i = 0; i < atom->nlocal; i++) {
     if (!(mask[i] & groupbit)) continue;
-    double d[3] = {0.0, 0.0, 0.0}, vw[3] = {vwall[0], vwall[1], vwall[2]}, rwall = 0.0;
+    double d[3] = {0.0, 0.0, 0.0}, vw[3] = {vwall[0], vwall[1], vwall[2]}, rwall = 0.0, r;
     if (wallstyle == XPLANE || wallstyle == YPLANE || wallstyle == ZPLANE) {
       const int k = wallstyle;  // XPLANE, YPLANE, ZPLANE are 0, 1, 2
       const double del1 = x[i][k] - wlo, del2 = whi - x[i][k];
       d[k] = del1 < del2 ? del1 : -del2;
+      r = std::fabs(d[k]);  // (= sqrt(d[k]^2) exactly, without its latency)
     } else if (wallstyle == ZCYLINDER) {
       const double delxy = sqrt(x[i][0] * x[i][0] + x[i][1] * x[i][1]);
       const double delr = cylradius - delxy;
@@ -260,8 +272,9 @@ void FixWallGranPowder::post_force(int vflag)
         vw[1] += -vshear * x[i][0] / delxy;
         vw[2] = 0.0;
       }
-    }
-    const double r = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+      r = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    } else
+      continue;
     if (!(r > 0.0) || r > 2.0 * radius[i]) continue;
     const double n[3] = {d[0] / r, d[1] / r, d[2] / r};
     const double rate = (v[i][0] - vw[0]) * n[0] + (v[i][1] - vw[1]) * n[1] + (v[i][2] - vw[2]) * n[2];

@@ -52,6 +52,11 @@ struct WallGranPowderCoeffs {
   // the step (0: no calibration speed)
   double damping_correction(const double *normal_coeffs, double delta, double separation_rate, double reff, double meff,
                             double dt, double speed_factor) const;
+
+ private:
+  // the last contact's (K/m*)^0.4 of the contact step, by its K/m* (grains of one size in a
+  // row reuse it instead of a pow per contact and step)
+  mutable double last_k_over_m = -1.0, last_k_over_m_04 = 0.0;
 };
 
 // Reads the keywords the powder wall fixes add to 'fix wall/gran granular ...'
