@@ -7,7 +7,8 @@
 Foam::meltdem::foamDistributionMesh::foamDistributionMesh(const fvMesh& mesh)
 :
     mesh_(mesh),
-    boxCells_(true)
+    boxCells_(true),
+    convexCells_(false)
 {
     update();
 }
@@ -48,6 +49,68 @@ void Foam::meltdem::foamDistributionMesh::update()
         // beside cells refined L levels (8 bytes a slot)
         lattice_.build(lo, hi, 64.0);
     }
+    buckets_ = ::meltdem::coupling::CellBucketGrid();
+    convexCells_ = false;
+    if (lattice_.empty())
+    {
+        buildBuckets();
+    }
+}
+
+
+void Foam::meltdem::foamDistributionMesh::buildBuckets()
+{
+    const fvMesh& mesh = mesh_;
+    const cellList& cells = mesh.cells();
+    const labelList& own = mesh.faceOwner();
+    std::vector<Eigen::Vector3d> lo(cells.size()), hi(cells.size());
+    forAll(cellBoxes_, celli)
+    {
+        const point& a = cellBoxes_[celli].min();
+        const point& b = cellBoxes_[celli].max();
+        lo[celli] = Eigen::Vector3d(a.x(), a.y(), a.z());
+        hi[celli] = Eigen::Vector3d(b.x(), b.y(), b.z());
+    }
+    std::vector<Eigen::Vector3d> fc(mesh.nFaces()), fa(mesh.nFaces());
+    forAll(mesh.faceCentres(), facei)
+    {
+        const point& c = mesh.faceCentres()[facei];
+        const vector& s = mesh.faceAreas()[facei];
+        fc[facei] = Eigen::Vector3d(c.x(), c.y(), c.z());
+        fa[facei] = Eigen::Vector3d(s.x(), s.y(), s.z());
+    }
+    std::vector<long> offsets(1, 0), faces;
+    forAll(cells, celli)
+    {
+        for (const label facei : cells[celli])
+        {
+            faces.push_back(own[facei] == celli ? long(facei) : -1 - long(facei));
+        }
+        offsets.push_back(long(faces.size()));
+    }
+    buckets_.build(lo, hi, fc, fa, offsets, faces);
+
+    // the face-planes test is exact where every cell's points lie on or behind its own
+    // face planes (1e-6 of the cell's size: rounding)
+    const pointField& pts = mesh.points();
+    const faceList& meshFaces = mesh.faces();
+    bool convex = true;
+    forAll(cells, celli)
+    {
+        std::vector<Eigen::Vector3d> cp;
+        for (const label pointi : cells[celli].labels(meshFaces))
+        {
+            cp.emplace_back(pts[pointi].x(), pts[pointi].y(), pts[pointi].z());
+        }
+        const double size = mag(cellBoxes_[celli].span());
+        if (buckets_.convexity_defect(long(celli), cp) > 1e-6*size)
+        {
+            convex = false;
+            break;
+        }
+    }
+    // (per rank: each rank searches its own cells, and only ranks without a lattice get here)
+    convexCells_ = convex;
 }
 
 
@@ -63,6 +126,10 @@ long Foam::meltdem::foamDistributionMesh::find_cell(const Eigen::Vector3d& p) co
     if (!lattice_.empty())
     {
         return lattice_.find_cell(p);
+    }
+    if (convexCells_)
+    {
+        return buckets_.find_cell(p);
     }
     const point pt(p.x(), p.y(), p.z());
     if (!boxCells_)
@@ -114,6 +181,16 @@ void Foam::meltdem::foamDistributionMesh::cells_in_sphere
     if (!lattice_.empty())
     {
         lattice_.cells_in_box
+        (
+            Eigen::Vector3d(c.x() - r, c.y() - r, c.z() - r),
+            Eigen::Vector3d(c.x() + r, c.y() + r, c.z() + r),
+            cells
+        );
+        return;
+    }
+    if (!buckets_.empty())
+    {
+        buckets_.cells_in_box
         (
             Eigen::Vector3d(c.x() - r, c.y() - r, c.z() - r),
             Eigen::Vector3d(c.x() + r, c.y() + r, c.z() + r),

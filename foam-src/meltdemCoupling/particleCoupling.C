@@ -55,6 +55,7 @@ Foam::meltdem::particleCoupling::particleCoupling
     model_(mc::DistributionModel::Neighbours),
     fixedSubSteps_(0),
     thermal_(meltdemDict.subDict("physics").getOrDefault<bool>("energy", false)),
+    oneWay_(!meltdemDict.subDict("physics").getOrDefault<bool>("flow", true)),
     distMesh_(mesh),
     haveLocated_(false),
     startHaveLocated_(false),
@@ -100,8 +101,15 @@ Foam::meltdem::particleCoupling::particleCoupling
         FatalIOErrorInFunction(dict_)
             << "heatExchange must be twoBody or implicit, not " << heatExchange << exit(FatalIOError);
     }
+    if (oneWay_ && heatExchange == "implicit")
+    {
+        FatalIOErrorInFunction(dict_)
+            << "heatExchange implicit exchanges the particles' heat in the energy solve, which"
+            << " one-way coupling (physics flow off) does not feed back: use twoBody"
+            << exit(FatalIOError);
+    }
     Info<< "Particles: distribution " << mc::to_string(model_) << ", heat exchange "
-        << heatExchange << endl;
+        << heatExchange << (oneWay_ ? ", one-way (the continuum is given, flow off)" : "") << endl;
 
     comm_.reset(new particleCommunicator);
     const MPI_Comm comm = comm_->comm();
@@ -132,6 +140,7 @@ Foam::meltdem::particleCoupling::particleCoupling
     exchange_.reset(new mc::ParallelExchange(distMesh_, model_, comm));
     startExchange_.reset(new mc::ParallelExchange(distMesh_, model_, comm));
     sampling_.reset(new particleSampling(mesh, comm, thermal_, laserShadow));
+    sampling_->setGiven(oneWay_);
     bounds_.reset(new temperatureBounds(mesh, comm));
     deposition_.reset(new particleDeposition(mesh, rhoMetal, model_));
     if (heatExchange == "implicit" && thermal_)
@@ -144,7 +153,7 @@ Foam::meltdem::particleCoupling::particleCoupling
         new particleLedgerOutput
         (
             mesh, comm, lammps, resumed ? &ledgerState : nullptr,
-            checkpoint_->dir(mesh.time().timeName())
+            checkpoint_->dir(mesh.time().timeName()), oneWay_
         )
     );
     ranks_.reset(new rankLoadOutput(mesh, comm, resumed));
@@ -311,6 +320,7 @@ void Foam::meltdem::particleCoupling::advance(Time& runTime, const fluidFields& 
     }
     std::vector<std::int64_t> leaving;
     deposition_->deposit(records, *exchange_, *startExchange_, cells, elapsed, inside_, lost_, leaving);
+    if (oneWay_) deposition_->clear();
 
     std::int64_t nLeaving = std::int64_t(leaving.size());
     MPI_Allreduce(MPI_IN_PLACE, &nLeaving, 1, MPI_INT64_T, MPI_SUM, comm);
@@ -323,7 +333,8 @@ void Foam::meltdem::particleCoupling::advance(Time& runTime, const fluidFields& 
 
     Info<< "Particles: " << lammps.particles() << " in " << n << " DEM steps of "
         << dtSub << " s; handed over "
-        << gSum(deposition_->massSource().field()*mesh_.V())*elapsed << " kg of metal" << endl;
+        << gSum(deposition_->massSource().field()*mesh_.V())*elapsed << " kg of metal"
+        << (oneWay_ ? " (one-way: none fed back)" : "") << endl;
 }
 
 

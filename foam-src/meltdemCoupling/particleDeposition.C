@@ -127,3 +127,12 @@ void Foam::meltdem::particleDeposition::addMetal
     alpha1.correctBoundaryConditions();
     alpha2 = 1.0 - alpha1;
 }
+
+
+void Foam::meltdem::particleDeposition::clear()
+{
+    massSource_.field() = 0;
+    volumeSource_.field() = 0;
+    enthalpySource_.field() = 0;
+    momentumSource_.field() = vector::zero;
+}

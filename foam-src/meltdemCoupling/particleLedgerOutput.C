@@ -13,12 +13,14 @@ Foam::meltdem::particleLedgerOutput::particleLedgerOutput
     MPI_Comm comm,
     const ::meltdem::LammpsCouplingHost& lammps,
     const std::string* ledgerState,
-    const fileName& checkpointDir
+    const fileName& checkpointDir,
+    const bool oneWay
 )
 :
     mesh_(mesh),
     comm_(comm),
-    ledger_(new mc::ConservationLedger(comm))
+    ledger_(new mc::ConservationLedger(comm)),
+    oneWay_(oneWay)
 {
     // powder drawn before the coupling starts is already in the particles or pending
     mc::Amounts pendingNow;
@@ -95,7 +97,20 @@ void Foam::meltdem::particleLedgerOutput::book
 {
     mc::ConservationLedger& L = *ledger_;
     L.begin_step(mesh_.time().value(), mesh_.time().deltaTValue());
-    for (const auto& r : inside) L.book_particle(r);
+    for (const auto& r : inside)
+    {
+        L.book_particle(r);
+        if (oneWay_)
+        {
+            // the continuum is given: what the particle handed over leaves with the given
+            // gas, what it took came from it
+            const mc::Amounts ex = mc::net_to_continuum(r);
+            for (int q = 0; q < mc::kComponents; ++q)
+            {
+                L.book(mc::kContinuumSource, mc::Component(q), -ex[q]);
+            }
+        }
+    }
     for (const auto& r : lost)
     {
         // outside the mesh nothing was deposited: its melt leaves with it

@@ -186,6 +186,7 @@ void Foam::meltdem::particleSampling::fluidStates
         if (!light.empty()) fs.heat_source = light[i];
         fs.thermal = thermal_;
         fs.implicit_heat = thermal_ && implicitHeat_;
+        if (given_) fs.mass = fs.capacity = 0;
         states.push_back(fs);
     }
 }

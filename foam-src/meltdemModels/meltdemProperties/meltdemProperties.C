@@ -87,7 +87,6 @@ meltdemProperties::meltdemProperties(const fvMesh& mesh)
                 << exit(FatalIOError);
         }
     };
-    needs(physics_.particles, "particles", physics_.flow, "flow");
     // the terms switched on, in their order
     std::vector<const physicsTerm::termInfo*> on;
     for (const auto& t : table)

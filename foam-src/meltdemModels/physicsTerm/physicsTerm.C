@@ -54,8 +54,9 @@ void Foam::meltdem::physicsTerm::writeTable(std::ostream& os)
         {"energy", {"energy", 0, {}, {{"metal", {{"cp", "> 0"}, {"k", "> 0"}, {"L", ">= 0"},
                    {"Tsolidus", "> 0"}, {"Tliquidus", "> 0"}}}, {"gas", {{"cp", "> 0"}, {"k", "> 0"}}}},
                    "the energy equation with latent heat", {"energy"}}},
-        {"particles", {"particles", 0, {"flow"}, {{"particles", {{"lammpsInput", "word"},
-                      {"distribution", "centre neighbours overlap"}}}}, "LAMMPS particles in the same job",
+        {"particles", {"particles", 0, {}, {{"particles", {{"lammpsInput", "word"},
+                      {"distribution", "centre neighbours overlap"}}}},
+                      "LAMMPS particles in the same job (with flow off: one-way, the fields as given)",
                       {"energy", "momentum"}}}
     };
     os << "{\"core\": {";

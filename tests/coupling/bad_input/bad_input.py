@@ -152,10 +152,12 @@ VARIANTS = {
         "metal L missing (material data)",
         lambda c: edit(c, PROPS, f" L {tp.L!r};", ""),
         ["missing entry 'L'"]),
-    "particles_without_flow": (
-        "physics particles on with flow off",
-        lambda c: edit(c, PROPS, "    flow on;", "    flow off;"),
-        ["'particles'", "'flow on'"]),
+    "one_way_implicit_heat": (
+        "one-way coupling (flow off) with heatExchange implicit, which it cannot feed back",
+        lambda c: (edit(c, PROPS, "    flow on;", "    flow off;"),
+                   edit(c, PROPS, "demStepsPerFluidStep auto;",
+                        "demStepsPerFluidStep auto;\n    heatExchange implicit;")),
+        ["heatExchange implicit", "one-way"]),
     "missing_particles_dict": (
         "physics particles on without the particles sub-dictionary",
         lambda c: edit(c, PROPS, re.compile(r"^particles\s*\{[^}]*\}\n", re.M), ""),
