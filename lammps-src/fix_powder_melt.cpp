@@ -246,8 +246,14 @@ void FixPowderMelt::hold_fluid(const std::vector<tagint> &tags, const std::vecto
       release(i);
     } else {
       double q[mc::kFluidStateDoubles];
-      mc::pack_fluid_state(states[std::size_t(it - tags.begin())], q);
-      if (!same_coefficients(&held[i][HELD_STATE], q)) release(i);
+      const mc::FluidState &now = states[std::size_t(it - tags.begin())];
+      mc::pack_fluid_state(now, q);
+      // (held without heat because particle and fluid were equally warm: still so?)
+      const double h = melt[i][HSPEC];
+      const bool level = h < mat.cp * mat.Tmelt && h / mat.cp == now.T;
+      if (!same_coefficients(&held[i][HELD_STATE], q) ||
+          (coef[i][C_SHARE] == 0.0 && now.thermal && now.k > 0.0 && !level))
+        release(i);
     }
     held[i][HELD_SET] = found ? 1.0 : 0.0;
     held[i][HELD_BY] = found ? double(located_by) : -1.0;
@@ -398,7 +404,10 @@ double FixPowderMelt::hold_coefficients(int i, const mc::FluidState &fluid, doub
   mc::HeldExchangeInput in;
   in.model = drag_model;
   in.rho = fluid.rho, in.mu = fluid.mu, in.cp = fluid.cp;
-  in.k = fluid.thermal ? fluid.k : 0.0;
+  // equal temperatures stay equal: only this exchange would change either over the interval
+  const double h_now = melt[i][HSPEC];
+  const bool level = h_now < mat.cp * mat.Tmelt && h_now / mat.cp == melt[i][P_T];
+  in.k = fluid.thermal && !level ? fluid.k : 0.0;
   in.C_fluid = fluid.capacity;
   in.d = 2.0 * atom->radius[i], in.m = atom->rmass[i], in.cp_particle = mat.cp;
   in.dt = dt;
@@ -414,10 +423,7 @@ double FixPowderMelt::hold_coefficients(int i, const mc::FluidState &fluid, doub
   c[C_Y0] = h.beta.y0;
   c[C_BETA0] = h.beta.v0, c[C_BETA1] = h.beta.slope;
   c[C_E10] = h.expm1_rate.v0, c[C_E11] = h.expm1_rate.slope;
-  // equal temperatures stay equal: only this exchange would change either over the interval
-  const double h_now = melt[i][HSPEC];
-  const bool level = h_now < mat.cp * mat.Tmelt && h_now / mat.cp == melt[i][P_T];
-  c[C_SHARE] = level ? 0.0 : h.share;
+  c[C_SHARE] = h.share;
   c[C_LO] = h.lo, c[C_HI] = h.hi;
   // the two-body cap of the drag coefficient (particle_forces.h)
   c[C_CAP] = mc::two_body_drag_coefficient(HUGE_VAL, in.m, fluid.mass, dt);
