@@ -65,16 +65,7 @@ double WallGranPowderCoeffs::damping_correction(const double *normal_coeffs, dou
   // apart now and a step ago: no contact this step, no correction (most grains near a wall)
   if (delta <= 0.0 && delta + dt * separation_rate <= 0.0) return 0.0;
   const double hertz_k = normal_coeffs[0] * std::sqrt(reff);
-  double h = 0.0;
-  if (speed_factor > 0.0) {
-    // meltdem::coupling::contact_step, its pow kept for the next contact of the same K/m*
-    const double k_over_m = hertz_k / meff;
-    if (k_over_m != last_k_over_m) {
-      last_k_over_m = k_over_m;
-      last_k_over_m_04 = std::pow(k_over_m, 0.4);
-    }
-    h = speed_factor * last_k_over_m_04;
-  }
+  const double h = speed_factor > 0.0 ? contact_step(speed_factor, hertz_k, meff) : 0.0;
   return meltdem::coupling::stepped_damping_correction(stepped.alpha(h), normal_coeffs[1], hertz_k, meff, delta,
                                                        separation_rate, dt);
 }

@@ -54,9 +54,7 @@ struct WallGranPowderCoeffs {
                             double dt, double speed_factor) const;
 
  private:
-  // the last contact's (K/m*)^0.4 of the contact step, by its K/m* (grains of one size in a
-  // row reuse it instead of a pow per contact and step)
-  mutable double last_k_over_m = -1.0, last_k_over_m_04 = 0.0;
+  mutable meltdem::coupling::ContactStepMemo contact_step;  // (its pow kept between contacts)
 };
 
 // Reads the keywords the powder wall fixes add to 'fix wall/gran granular ...'

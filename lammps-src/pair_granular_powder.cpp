@@ -211,8 +211,7 @@ void PairGranularPowder::add_stepped_damping(int /*eflag*/, int /*vflag*/)
   const double speed = current_impact_speed();
   const double speed_factor = speed > 0.0 ? step * std::pow(speed, 0.2) : 0.0;
 
-  // the last contact's (K/m*)^0.4 by its K/m*: grains of one size reuse it (a pow per contact)
-  double last_k_over_m = -1.0, last_k_over_m_04 = 0.0;
+  mc::ContactStepMemo contact_step;  // (its pow kept between contacts)
   for (int ii = 0; ii < list->inum; ii++) {
     const int i = list->ilist[ii];
     const int itype = type[i];
@@ -248,16 +247,7 @@ void PairGranularPowder::add_stepped_damping(int /*eflag*/, int /*vflag*/)
       const double reff = radius[i] * radius[j] / radsum;
       const double hertz_k = nc[itype][jtype][0] * std::sqrt(reff);
 
-      double h = 0.0;
-      if (speed > 0.0) {
-        // mc::contact_step(speed_factor, hertz_k, meff)
-        const double k_over_m = hertz_k / meff;
-        if (k_over_m != last_k_over_m) {
-          last_k_over_m = k_over_m;
-          last_k_over_m_04 = std::pow(k_over_m, 0.4);
-        }
-        h = speed_factor * last_k_over_m_04;
-      }
+      const double h = speed > 0.0 ? contact_step(speed_factor, hertz_k, meff) : 0.0;
       const double alpha = alpha_tables[slot(itype, jtype)].alpha(h);
       const double fn = mc::stepped_damping_correction(alpha, nc[itype][jtype][1], hertz_k, meff, delta, vnnr, step);
 

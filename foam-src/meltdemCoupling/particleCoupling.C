@@ -109,7 +109,8 @@ Foam::meltdem::particleCoupling::particleCoupling
             << exit(FatalIOError);
     }
     Info<< "Particles: distribution " << mc::to_string(model_) << ", heat exchange "
-        << heatExchange << (oneWay_ ? ", one-way (the continuum is given, flow off)" : "") << endl;
+        << heatExchange << (oneWay_ ? ", one-way (the continuum is given, flow off)" : "")
+        << ", cell search (master rank) " << distMesh_.searchName() << endl;
 
     comm_.reset(new particleCommunicator);
     const MPI_Comm comm = comm_->comm();

@@ -35,19 +35,6 @@ GRAIN = dict(d=50e-6, rho=7800.0, cp=500.0, Tm=1700.0, L=2.7e5, T0=300.0, y=3.5e
 T_END, DEM_DT = 4e-3, 1e-6
 
 
-def history(log):
-    """(time, vy, T) of the grain from the thermo lines of the LAMMPS log."""
-    rows = []
-    for line in open(log):
-        w = line.split()
-        if len(w) == 5 and re.fullmatch(r"\d+", w[0]) and w[2] == "1":
-            try:
-                rows.append((float(w[1]), float(w[3]), float(w[4])))
-            except ValueError:
-                pass
-    return np.array(sorted(set(rows)))
-
-
 def main():
     keep = "--keep" in sys.argv
     work = tempfile.mkdtemp(prefix="meltdem-one-way-")
@@ -71,7 +58,7 @@ def main():
                             1.0 if refused else 0.0, 1.0, 0.0)
         return fc.finish(ok, work, keep)
     cc.run_solver(case)
-    coupled = history(os.path.join(case, "log.lammps"))
+    coupled = cc.track(os.path.join(case, "log.lammps"))  # (time, vy, T)
 
     # the same LAMMPS input standalone, in the uniform given gas ('ambient')
     alone = os.path.join(work, "alone")
@@ -84,7 +71,7 @@ def main():
     open(os.path.join(alone, "in.alone"), "w").write(text)
     subprocess.run([paths.binary("meltdem-lmp"), "-in", "in.alone", "-log", "log.lammps", "-screen", "none"],
                    cwd=alone, check=True)
-    standalone = history(os.path.join(alone, "log.lammps"))
+    standalone = cc.track(os.path.join(alone, "log.lammps"))
     common = np.intersect1d(np.round(coupled[:, 0], 12), np.round(standalone[:, 0], 12))
     pick = lambda h: h[np.isin(np.round(h[:, 0], 12), common)]  # noqa: E731
     c, s = pick(coupled), pick(standalone)
