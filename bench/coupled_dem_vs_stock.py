@@ -44,6 +44,7 @@ GRAIN = "hertz/material 6e8 0.5 0.35 tangential mindlin NULL 1.0 {mu} damping ts
 WALL = "hertz/material 1e10 0.5 0.23 tangential mindlin NULL 1.0 {mu} damping tsuji"
 GAS = "ambient 300 0.026 1.2 1.8e-5 1005 0 0 0"
 MELT = "fix melt all powder/melt cp 500 Tmelt 1700 latent 2.7e5"
+HELD = "coefficient_tolerance 0.01"
 
 
 def walls(outlet_open):
@@ -93,8 +94,8 @@ set type 1 density 964
 
 CASES = {
     "stock (/usr/bin/lmp)": ("/usr/bin/lmp", ""),
-    "fix powder/melt, isothermal": ("MELTDEM", f"{MELT} temp 300 {GAS}"),
-    "fix powder/melt, heating": ("MELTDEM", f"{MELT} temp 100 {GAS}"),
+    "fix powder/melt, isothermal": ("MELTDEM", f"{MELT} temp 300 {GAS} {HELD}"),
+    "fix powder/melt, heating": ("MELTDEM", f"{MELT} temp 100 {GAS} {HELD}"),
     "fix powder/melt, tol 0": ("MELTDEM", f"{MELT} temp 300 {GAS} coefficient_tolerance 0"),
 }
 PHASES = ("heap", "discharge")

@@ -82,7 +82,8 @@ TUTORIAL = ("usr/share/doc/openfoam-examples/examples/lagrangian/icoUncoupledKin
 CELL = 0.02          # cells of the coupled run's box mesh [m]: 3.3 d, the usual unresolved CFD-DEM size
 BIN = 0.02           # x bins of the free-surface profile [m]
 TOP = 3              # grains per bin averaged for the free surface
-ISOTHERMAL = "cp 1000 Tmelt 5000 latent 1e5 temp 300"   # physics energy off: not used
+# (physics energy off: cp, Tmelt, latent not used); drag coefficients held over sub-steps within 1 %
+ISOTHERMAL = "cp 1000 Tmelt 5000 latent 1e5 temp 300 coefficient_tolerance 0.01"
 
 
 # ------------------------------------------------------------------------------ the tutorial

@@ -37,7 +37,7 @@ namespace mc = meltdem::coupling;
 
 FixPowderMelt::FixPowderMelt(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), drag_model(mc::DragModel::Thesis), T0(0.0), ambient_flag(0), provider(nullptr), in_setup(0),
-    solid_flag(0), solid_estar(0.0), solid_alpha(0.0), melt(nullptr), coef(nullptr), coef_tol(1e-2), vector_dirty(1)
+    solid_flag(0), solid_estar(0.0), solid_alpha(0.0), melt(nullptr), coef(nullptr), coef_tol(0.0), vector_dirty(1)
 {
   if (strcmp(update->unit_style, "si") != 0)
     error->all(FLERR, "Fix powder/melt requires units si (its heat and drag laws use SI values)");
@@ -401,6 +401,14 @@ double FixPowderMelt::hold_coefficients(int i, const mc::FluidState &fluid, doub
   const bool every_step = fluid.heat_source > 0.0 || (solid_flag && fluid.solid.present) || fluid.implicit_heat;
   c[C_STATE] = every_step ? 2.0 : 1.0;
   if (every_step) return -1.0;
+  if (solid_flag) {
+    // no solid metal this interval: the contact memory is forgotten, as a step of the full path
+    // does (mc::update_solid_contact)
+    const mc::SolidContactMemory none;
+    melt[i][S_OFFSET] = none.offset;
+    melt[i][S_HAS] = none.has_plane ? 1.0 : 0.0;
+    for (int k = 0; k < 3; k++) melt[i][S_PX + k] = none.point[k], melt[i][S_NX + k] = none.normal[k];
+  }
   mc::HeldExchangeInput in;
   in.model = drag_model;
   in.rho = fluid.rho, in.mu = fluid.mu, in.cp = fluid.cp;

@@ -193,7 +193,7 @@ class FixPowderMelt : public Fix {
     NCOEF
   };
   double **coef;
-  double coef_tol;  // keyword coefficient_tolerance
+  double coef_tol;  // keyword coefficient_tolerance (0: every step, the default)
   // evaluate particle i's coefficients for the fluid it sees (after parcel_state) and step dt;
   // returns its squared slip, or -1 where it is evaluated every step
   double hold_coefficients(int i, const meltdem::coupling::FluidState &fluid, double dt);
