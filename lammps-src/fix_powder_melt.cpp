@@ -37,7 +37,7 @@ namespace mc = meltdem::coupling;
 
 FixPowderMelt::FixPowderMelt(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), drag_model(mc::DragModel::Thesis), T0(0.0), ambient_flag(0), provider(nullptr), in_setup(0),
-    solid_flag(0), solid_estar(0.0), solid_alpha(0.0), melt(nullptr), coef(nullptr), coef_tol(0.0), vector_dirty(1)
+    solid_flag(0), solid_estar(0.0), solid_alpha(0.0), melt(nullptr), coef(nullptr), coef_tol(0.01), vector_dirty(1)
 {
   if (strcmp(update->unit_style, "si") != 0)
     error->all(FLERR, "Fix powder/melt requires units si (its heat and drag laws use SI values)");
@@ -238,16 +238,32 @@ void FixPowderMelt::hold_fluid(const std::vector<tagint> &tags, const std::vecto
 {
   if (tags.size() != states.size()) error->one(FLERR, "Fix powder/melt: hold_fluid needs one state per tag");
   held_flag = 1;
+  // each state's local atom: through the atom map where there is one, else by binary search
+  std::vector<int> state_of(std::size_t(atom->nlocal), -1);
+  bool mapped = atom->map_style != Atom::MAP_NONE;
+  for (std::size_t k = 0; mapped && k < tags.size(); ++k) {
+    const int i = atom->map(tags[k]);
+    if (i < 0 || i >= atom->nlocal) continue;
+    mapped = atom->tag[i] == tags[k];  // a map out of date: searched below instead
+    state_of[std::size_t(i)] = int(k);
+  }
+  if (!mapped) {
+    std::fill(state_of.begin(), state_of.end(), -1);
+    for (int i = 0; i < atom->nlocal; i++) {
+      const auto it = std::lower_bound(tags.begin(), tags.end(), atom->tag[i]);
+      if (it != tags.end() && *it == atom->tag[i]) state_of[std::size_t(i)] = int(it - tags.begin());
+    }
+  }
   for (int i = 0; i < atom->nlocal; i++) {
-    const auto it = std::lower_bound(tags.begin(), tags.end(), atom->tag[i]);
-    const bool found = it != tags.end() && *it == atom->tag[i];
+    const int k = state_of[std::size_t(i)];
+    const bool found = k >= 0;
+    double q[mc::kFluidStateDoubles];
+    if (found) mc::pack_fluid_state(states[std::size_t(k)], q);
     // a particle keeps its held coefficients while the fluid's properties it sees stay the same
     if (!(found && held[i][HELD_SET] != 0.0 && coef[i][C_STATE] == 1.0)) {
       release(i);
     } else {
-      double q[mc::kFluidStateDoubles];
-      const mc::FluidState &now = states[std::size_t(it - tags.begin())];
-      mc::pack_fluid_state(now, q);
+      const mc::FluidState &now = states[std::size_t(k)];
       // (held without heat because particle and fluid were equally warm: still so?)
       const double h = melt[i][HSPEC];
       const bool level = h < mat.cp * mat.Tmelt && h / mat.cp == now.T;
@@ -257,7 +273,7 @@ void FixPowderMelt::hold_fluid(const std::vector<tagint> &tags, const std::vecto
     }
     held[i][HELD_SET] = found ? 1.0 : 0.0;
     held[i][HELD_BY] = found ? double(located_by) : -1.0;
-    if (found) mc::pack_fluid_state(states[std::size_t(it - tags.begin())], &held[i][HELD_STATE]);
+    if (found) std::copy(q, q + mc::kFluidStateDoubles, &held[i][HELD_STATE]);
   }
 }
 
@@ -577,14 +593,15 @@ void FixPowderMelt::end_of_step()
       const double T = h / mat.cp, D0 = c[C_PT] - T;
       if (D0 == 0.0) continue;
       const double y = mc::held_variable(s2);
-      const double h_new = mat.cp * (T - c[C_SHARE] * D0 * (c[C_E10] + c[C_E11] * (y - c[C_Y0])));
+      const double T_new = T - c[C_SHARE] * D0 * (c[C_E10] + c[C_E11] * (y - c[C_Y0]));
+      const double h_new = mat.cp * T_new;
       if (h < hm && h_new < hm) {
         const double heat = rmass[i] * (h_new - h);
         if (c[C_CF] > 0.0) c[C_PT] -= heat / c[C_CF];
         held_heat.add(heat);
         melt[i][HSPEC] = h_new;
         c[C_IHEAT] += heat;
-        melt[i][TEMP] = h_new / mat.cp;  // below melting
+        melt[i][TEMP] = T_new;  // below melting
         continue;
       }
     }
@@ -887,18 +904,45 @@ void FixPowderMelt::current_records(std::vector<mc::ExchangeRecord> &out) const
 void FixPowderMelt::records(std::vector<mc::ExchangeRecord> &out, bool with_finished) const
 {
   // by ID: the coupling's sums then do not depend on LAMMPS's atom order, which a sort or
-  // a restart changes (a resumed run equals the uninterrupted one bit for bit). The tags are
-  // sorted, then the records made in that order (-1 - k: finished record k)
-  std::vector<std::pair<tagint, int>> order;
-  order.reserve(finished.size() + std::size_t(atom->nlocal));
+  // a restart changes (a resumed run equals the uninterrupted one bit for bit)
+  const std::vector<int> &order = local_order_by_tag();
+  std::vector<std::pair<tagint, int>> gone;  // -1 - k: finished record k, by tag
   for (std::size_t k = 0; with_finished && k < finished.size(); ++k)
-    order.emplace_back(tagint(finished[k].id), -1 - int(k));
-  for (int i = 0; i < atom->nlocal; i++)
-    if (atom->mask[i] & groupbit) order.emplace_back(atom->tag[i], i);
-  std::sort(order.begin(), order.end());
+    gone.emplace_back(tagint(finished[k].id), -1 - int(k));
+  std::sort(gone.begin(), gone.end());
   out.clear();
-  out.reserve(order.size());
-  for (const auto &o : order) out.push_back(o.second >= 0 ? record(o.second) : finished[std::size_t(-1 - o.second)]);
+  out.reserve(order.size() + gone.size());
+  auto g = gone.cbegin();
+  for (const int i : order) {
+    for (; g != gone.cend() && g->first < atom->tag[i]; ++g) out.push_back(finished[std::size_t(-1 - g->second)]);
+    out.push_back(record(i));
+  }
+  for (; g != gone.cend(); ++g) out.push_back(finished[std::size_t(-1 - g->second)]);
+}
+
+const std::vector<int> &FixPowderMelt::local_order_by_tag() const
+{
+  // the last order still holds while the group's local atoms are the same ones in the same
+  // slots: every listed slot in the group, tags strictly ascending and none left out
+  const tagint *tag = atom->tag;
+  const int *mask = atom->mask;
+  const int nlocal = atom->nlocal;
+  std::size_t in_group = 0;
+  for (int i = 0; i < nlocal; i++) in_group += (mask[i] & groupbit) ? 1 : 0;
+  bool valid = tag_order.size() == in_group;
+  for (std::size_t k = 0; valid && k < tag_order.size(); ++k) {
+    const int i = tag_order[k];
+    valid = i < nlocal && (mask[i] & groupbit) && (k == 0 || tag[tag_order[k - 1]] < tag[i]);
+  }
+  if (valid) return tag_order;
+  std::vector<std::pair<tagint, int>> by_tag;
+  by_tag.reserve(in_group);
+  for (int i = 0; i < nlocal; i++)
+    if (mask[i] & groupbit) by_tag.emplace_back(tag[i], i);
+  std::sort(by_tag.begin(), by_tag.end());
+  tag_order.clear();
+  for (const auto &t : by_tag) tag_order.push_back(t.second);
+  return tag_order;
 }
 
 void FixPowderMelt::reset_interval()

@@ -133,6 +133,9 @@ class FixPowderMelt : public Fix {
   std::vector<meltdem::coupling::ExchangeRecord> finished;  // deleted this interval
   meltdem::coupling::ExchangeRecord record(int i) const;
   void records(std::vector<meltdem::coupling::ExchangeRecord> &out, bool with_finished) const;
+  // the local atoms of the group by ascending tag (kept while LAMMPS moves no atom)
+  const std::vector<int> &local_order_by_tag() const;
+  mutable std::vector<int> tag_order;
   meltdem::coupling::MeltMaterial mat;
   meltdem::coupling::DragModel drag_model;
   double T0;
@@ -193,7 +196,7 @@ class FixPowderMelt : public Fix {
     NCOEF
   };
   double **coef;
-  double coef_tol;  // keyword coefficient_tolerance (0: every step, the default)
+  double coef_tol;  // keyword coefficient_tolerance (0: every step; default 0.01)
   // evaluate particle i's coefficients for the fluid it sees (after parcel_state) and step dt;
   // returns its squared slip, or -1 where it is evaluated every step
   double hold_coefficients(int i, const meltdem::coupling::FluidState &fluid, double dt);
