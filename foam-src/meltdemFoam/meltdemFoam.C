@@ -40,6 +40,7 @@ Description
 #include "caseLock.H"
 #include "meshRefinement.H"
 #include "interfaceDeltaN.H"
+#include "correctMixture.H"
 #include "dynamicRefineFvMesh.H"
 #include "energyTransport.H"
 #include "upwind.H"
@@ -178,7 +179,7 @@ int main(int argc, char *argv[])
 
                         fvc::makeRelative(phi, U);
 
-                        mixture.correct();
+                        Foam::meltdem::correctMixture(mixture, mixtureCurvature);
                     }
 
                     if (checkMeshCourantNo)
@@ -198,7 +199,7 @@ int main(int argc, char *argv[])
                 rho == alpha1*rho1 + alpha2*rho2;
             }
 
-            mixture.correct();
+            Foam::meltdem::correctMixture(mixture, mixtureCurvature);
 
             // energy with the same metal fluxes that moved alpha
             #include "TEqn.H"

@@ -99,6 +99,23 @@ Foam::tmp<Foam::surfaceScalarField> Foam::meltdem::physicsTerms::surfaceForce
 }
 
 
+bool Foam::meltdem::physicsTerms::needsMixtureCurvature
+(
+    const immiscibleIncompressibleTwoPhaseMixture& mixture
+) const
+{
+    for (const physicsTerm& t : terms_)
+    {
+        if (t.usesMixtureCurvature()) return true;
+    }
+    // "sigma 0;" only: a model dictionary or a non-zero sigma keeps the curvature
+    const entry* e = mixture.findEntry("sigma", keyType::LITERAL);
+    if (!e || e->isDict()) return true;
+    ITstream& is = e->stream();
+    return !(is.size() == 1 && is[0].isNumber() && is[0].number() == 0);
+}
+
+
 void Foam::meltdem::physicsTerms::addMomentum
 (
     fvVectorMatrix& UEqn,
