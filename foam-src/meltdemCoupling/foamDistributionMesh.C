@@ -178,24 +178,15 @@ void Foam::meltdem::foamDistributionMesh::cells_in_sphere
     std::vector<long>& cells
 ) const
 {
+    const Eigen::Vector3d lo(c.array() - r), hi(c.array() + r);
     if (!lattice_.empty())
     {
-        lattice_.cells_in_box
-        (
-            Eigen::Vector3d(c.x() - r, c.y() - r, c.z() - r),
-            Eigen::Vector3d(c.x() + r, c.y() + r, c.z() + r),
-            cells
-        );
+        lattice_.cells_in_box(lo, hi, cells);
         return;
     }
     if (!buckets_.empty())
     {
-        buckets_.cells_in_box
-        (
-            Eigen::Vector3d(c.x() - r, c.y() - r, c.z() - r),
-            Eigen::Vector3d(c.x() + r, c.y() + r, c.z() + r),
-            cells
-        );
+        buckets_.cells_in_box(lo, hi, cells);
         return;
     }
     const treeBoundBox search
