@@ -493,8 +493,7 @@ void FixPowderMelt::post_force(int /*vflag*/)
       // the run's first forces: held particles with their lines, nothing booked
       if (holds(i, radius, dt) && (s2 = held_slip2(i, v[i])) >= 0.0) {
         const double *c = coef[i];
-        const double y = c[C_BETA1] == 0.0 ? c[C_Y0] : mc::held_variable(s2);
-        const double beta = std::min(c[C_BETA0] + c[C_BETA1] * (y - c[C_Y0]), c[C_CAP]);
+        const double beta = held_drag_coefficient(i, s2);
         for (int k = 0; k < 3; k++) f[i][k] += beta * (c[C_PUX + k] - v[i][k]) + c[C_VB] * g[k];
         continue;
       }
@@ -509,8 +508,7 @@ void FixPowderMelt::post_force(int /*vflag*/)
     if (s2 >= 0.0) {
       // held coefficients: drag against the parcel's velocity now, buoyancy with g now
       double *c = coef[i];
-      const double y = c[C_BETA1] == 0.0 ? c[C_Y0] : mc::held_variable(s2);
-      const double beta = std::min(c[C_BETA0] + c[C_BETA1] * (y - c[C_Y0]), c[C_CAP]);
+      const double beta = held_drag_coefficient(i, s2);
       for (int k = 0; k < 3; k++) {
         const double drag = beta * (c[C_PUX + k] - v[i][k]);
         c[C_PUX + k] -= drag * c[C_DTMF];

@@ -19,8 +19,10 @@ FixStyle(powder/melt,FixPowderMelt)
 #include "meltdem/coupling/exchange_record.h"
 #include "meltdem/coupling/exact_sum.h"
 #include "meltdem/coupling/fluid_state.h"
+#include "meltdem/coupling/held_exchange.h"
 #include "meltdem/coupling/particle_melting.h"
 
+#include <algorithm>
 #include <functional>
 #include <memory>
 #include <vector>
@@ -233,6 +235,14 @@ class FixPowderMelt : public Fix {
   static bool same_coefficients(const double *q, const double *p);
   // column col (P_* or I_*) of particle i, wherever it lives now
   double interval_value(int i, int col) const;
+  // the held drag coefficient of particle i at squared slip s2 (inside its window): the line in
+  // y = s^(1/2), at most the two-body cap
+  inline double held_drag_coefficient(int i, double s2) const
+  {
+    const double *c = coef[i];
+    const double y = c[C_BETA1] == 0.0 ? c[C_Y0] : meltdem::coupling::held_variable(s2);
+    return std::min(c[C_BETA0] + c[C_BETA1] * (y - c[C_Y0]), c[C_CAP]);
+  }
   // the squared slip of particle i (velocity v) against its parcel; negative when outside the
   // held window
   inline double held_slip2(int i, const double *v) const
