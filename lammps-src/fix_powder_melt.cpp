@@ -238,22 +238,10 @@ void FixPowderMelt::hold_fluid(const std::vector<tagint> &tags, const std::vecto
 {
   if (tags.size() != states.size()) error->one(FLERR, "Fix powder/melt: hold_fluid needs one state per tag");
   held_flag = 1;
-  // each state's local atom: through the atom map where there is one, else by binary search
   std::vector<int> state_of(std::size_t(atom->nlocal), -1);
-  bool mapped = atom->map_style != Atom::MAP_NONE;
-  for (std::size_t k = 0; mapped && k < tags.size(); ++k) {
-    const int i = atom->map(tags[k]);
-    if (i < 0 || i >= atom->nlocal) continue;
-    mapped = atom->tag[i] == tags[k];  // a map out of date: searched below instead
-    state_of[std::size_t(i)] = int(k);
-  }
-  if (!mapped) {
-    std::fill(state_of.begin(), state_of.end(), -1);
-    for (int i = 0; i < atom->nlocal; i++) {
-      const auto it = std::lower_bound(tags.begin(), tags.end(), atom->tag[i]);
-      if (it != tags.end() && *it == atom->tag[i]) state_of[std::size_t(i)] = int(it - tags.begin());
-    }
-  }
+  const std::vector<int> slot = local_slots(tags);
+  for (std::size_t k = 0; k < tags.size(); ++k)
+    if (slot[k] >= 0) state_of[std::size_t(slot[k])] = int(k);
   for (int i = 0; i < atom->nlocal; i++) {
     const int k = state_of[std::size_t(i)];
     const bool found = k >= 0;
@@ -965,19 +953,40 @@ void FixPowderMelt::reset_interval()
 void FixPowderMelt::set_heat_owed(const std::vector<tagint> &tags, const std::vector<double> &heat)
 {
   if (tags.size() != heat.size()) error->one(FLERR, "Fix powder/melt: set_heat_owed needs one heat per tag");
-  std::unordered_map<tagint, double> of;
-  of.reserve(tags.size());
-  for (std::size_t k = 0; k < tags.size(); ++k) of[tags[k]] = heat[k];
-  std::size_t found = 0;
-  for (int i = 0; i < atom->nlocal; i++) {
-    const auto it = of.find(atom->tag[i]);
-    if (it == of.end()) continue;
-    melt[i][OWED] += it->second;
-    ++found;
+  const std::vector<int> slot = local_slots(tags);
+  std::size_t missing = 0;
+  for (std::size_t k = 0; k < tags.size(); ++k) {
+    if (slot[k] < 0) {
+      ++missing;
+      continue;
+    }
+    melt[slot[k]][OWED] += heat[k];
   }
-  if (found != tags.size())
-    error->one(FLERR, "Fix powder/melt: {} of {} particles given heat are not on this rank", tags.size() - found,
-               tags.size());
+  if (missing)
+    error->one(FLERR, "Fix powder/melt: {} of {} particles given heat are not on this rank", missing, tags.size());
+}
+
+std::vector<int> FixPowderMelt::local_slots(const std::vector<tagint> &tags) const
+{
+  // through the atom map where there is one and it is current, else through a map of the tags
+  std::vector<int> slot(tags.size(), -1);
+  bool mapped = atom->map_style != Atom::MAP_NONE;
+  for (std::size_t k = 0; mapped && k < tags.size(); ++k) {
+    const int i = atom->map(tags[k]);
+    if (i < 0 || i >= atom->nlocal) continue;
+    mapped = atom->tag[i] == tags[k];
+    slot[k] = i;
+  }
+  if (mapped) return slot;
+  std::fill(slot.begin(), slot.end(), -1);
+  std::unordered_map<tagint, int> at;
+  at.reserve(std::size_t(atom->nlocal));
+  for (int i = 0; i < atom->nlocal; i++) at[atom->tag[i]] = i;
+  for (std::size_t k = 0; k < tags.size(); ++k) {
+    const auto it = at.find(tags[k]);
+    if (it != at.end()) slot[k] = it->second;
+  }
+  return slot;
 }
 
 bigint FixPowderMelt::remove_particles(const std::vector<tagint> &tags)

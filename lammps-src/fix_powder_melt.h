@@ -135,6 +135,8 @@ class FixPowderMelt : public Fix {
   std::vector<meltdem::coupling::ExchangeRecord> finished;  // deleted this interval
   meltdem::coupling::ExchangeRecord record(int i) const;
   void records(std::vector<meltdem::coupling::ExchangeRecord> &out, bool with_finished) const;
+  // the local slot of each tag, -1 where it is not a local atom of this rank
+  std::vector<int> local_slots(const std::vector<tagint> &tags) const;
   // the local atoms of the group by ascending tag (kept while LAMMPS moves no atom)
   const std::vector<int> &local_order_by_tag() const;
   mutable std::vector<int> tag_order;
