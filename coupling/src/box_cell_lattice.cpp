@@ -120,4 +120,46 @@ void BoxCellLattice::cells_in_box(const Eigen::Vector3d &lo, const Eigen::Vector
   if (spanning_) cells.erase(std::unique(cells.begin() + std::ptrdiff_t(start), cells.end()), cells.end());
 }
 
+bool BoxCellLattice::slot_range(const Eigen::Vector3d &c, double r, int first[3], int last[3]) const
+{
+  if (slots_.empty()) return false;
+  for (int a = 0; a < 3; ++a) {
+    const std::vector<double> &q = planes_[a];
+    if (!(c[a] - r <= q.back() && c[a] + r >= q.front())) return false;
+    first[a] = std::max(0, bound(a, c[a] - r, false) - 1);
+    last[a] = std::min(n_[a] - 1, bound(a, c[a] + r, true) - 1);
+    if (first[a] > last[a]) return false;
+  }
+  return true;
+}
+
+void BoxCellLattice::slots_in_sphere(const Eigen::Vector3d &c, double r, std::vector<long> &cells,
+                                     std::vector<Eigen::Vector3d> &lo, std::vector<Eigen::Vector3d> &hi) const
+{
+  int first[3], last[3];
+  if (!slot_range(c, r, first, last)) return;
+  thread_local std::vector<double> out2[3];  // squared distance from the centre to each interval, per axis
+  for (int a = 0; a < 3; ++a) {
+    const std::vector<double> &q = planes_[a];
+    out2[a].resize(std::size_t(last[a] - first[a] + 1));
+    for (int i = first[a]; i <= last[a]; ++i) {
+      const double d = std::max({q[std::size_t(i)] - c[a], c[a] - q[std::size_t(i) + 1], 0.0});
+      out2[a][std::size_t(i - first[a])] = d * d;
+    }
+  }
+  const double r2 = r * r;
+  for (int k = first[2]; k <= last[2]; ++k)
+    for (int j = first[1]; j <= last[1]; ++j) {
+      const double dyz = out2[1][std::size_t(j - first[1])] + out2[2][std::size_t(k - first[2])];
+      if (dyz >= r2) continue;
+      for (int i = first[0]; i <= last[0]; ++i) {
+        const long cell = slot(i, j, k);
+        if (cell < 0 || dyz + out2[0][std::size_t(i - first[0])] >= r2) continue;
+        cells.push_back(cell);
+        lo.emplace_back(planes_[0][std::size_t(i)], planes_[1][std::size_t(j)], planes_[2][std::size_t(k)]);
+        hi.emplace_back(planes_[0][std::size_t(i) + 1], planes_[1][std::size_t(j) + 1], planes_[2][std::size_t(k) + 1]);
+      }
+    }
+}
+
 }  // namespace meltdem::coupling

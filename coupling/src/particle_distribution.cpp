@@ -1,6 +1,7 @@
 // Particle -> cell distribution models (Codina2019 §3.2.3, eq. 3.7) and the sphere-box overlap.
 #include "meltdem/coupling/particle_distribution.h"
 
+#include "meltdem/coupling/box_cell_lattice.h"
 #include "meltdem/coupling/exact_sum.h"
 
 #include <algorithm>
@@ -63,22 +64,113 @@ const char *to_string(DistributionModel model)
   return "?";
 }
 
-void append_overlap_volumes(const DistributionMesh &mesh, const Eigen::Vector3d &c, double r,
-                            std::vector<CellWeight> &out)
+namespace {
+
+// the overlap volumes in ascending cell order, a cell given as several boxes once with their sum
+void merge_cells(std::vector<CellWeight> &out, std::size_t start)
 {
-  thread_local std::vector<long> cells;
-  thread_local std::vector<Eigen::Vector3d> lo, hi;
+  const auto first = out.begin() + std::ptrdiff_t(start);
+  const auto not_ascending = [](const CellWeight &a, const CellWeight &b) { return a.cell >= b.cell; };
+  if (std::adjacent_find(first, out.end(), not_ascending) == out.end()) return;
+  std::sort(first, out.end(), [](const CellWeight &a, const CellWeight &b) { return a.cell < b.cell; });
+  auto kept = first;
+  for (auto it = first + 1; it != out.end(); ++it) {
+    if (it->cell == kept->cell)
+      kept->weight += it->weight;
+    else
+      *++kept = *it;
+  }
+  out.erase(kept + 1, out.end());
+}
+
+// |sphere ∩ box| for boxes the sphere reaches, appended with their cells
+void append_box_overlaps(const Eigen::Vector3d &c, double r, const std::vector<long> &cells,
+                         const std::vector<Eigen::Vector3d> &lo, const std::vector<Eigen::Vector3d> &hi,
+                         std::vector<CellWeight> &out)
+{
   thread_local SphereBoxOverlaps overlaps;
-  cells.clear();
-  mesh.cells_in_sphere(c, r, cells);
-  lo.resize(cells.size());
-  hi.resize(cells.size());
-  for (std::size_t i = 0; i < cells.size(); ++i) mesh.cell_bounds(cells[i], lo[i], hi[i]);
   overlaps.reset(c, r, lo, hi);
   for (std::size_t i = 0; i < cells.size(); ++i) {
     const double v = overlaps.volume(i);
     if (v > 0.0) out.push_back({cells[i], v});
   }
+}
+
+// On a lattice: where at most one plane cuts the sphere along each axis (a grain no larger than
+// its cells, away from the lattice's edges), every slot it reaches holds whole pieces of the
+// eight those planes make, read straight from the planes; otherwise the slots' boxes take the
+// general path
+void append_lattice_overlaps(const BoxCellLattice &lattice, const Eigen::Vector3d &c, double r,
+                             std::vector<CellWeight> &out)
+{
+  int first[3], last[3];
+  if (!lattice.slot_range(c, r, first, last)) return;
+  bool octants = true;  // at most one plane inside the sphere's extent per axis, none of them the lattice's edge
+  for (int a = 0; a < 3; ++a)
+    octants = octants && last[a] - first[a] <= 1 && lattice.plane(a, first[a]) <= c[a] - r &&
+              lattice.plane(a, last[a] + 1) >= c[a] + r;
+  if (!octants) {
+    thread_local std::vector<long> cells;
+    thread_local std::vector<Eigen::Vector3d> lo, hi;
+    cells.clear(), lo.clear(), hi.clear();
+    lattice.slots_in_sphere(c, r, cells, lo, hi);
+    append_box_overlaps(c, r, cells, lo, hi, out);
+    return;
+  }
+  // per axis the side of the cut each slot lies on (1 for the whole axis), -1 for a slot the
+  // sphere only touches
+  double cut[3];
+  int side[3][2];
+  for (int a = 0; a < 3; ++a) {
+    cut[a] = -r;
+    side[a][0] = side[a][1] = 1;
+    if (last[a] == first[a]) continue;
+    const double d = lattice.plane(a, first[a] + 1) - c[a];
+    if (d <= -r)
+      side[a][0] = -1;
+    else if (d >= r)
+      side[a][1] = -1;
+    else
+      cut[a] = d, side[a][0] = 0;
+  }
+  double piece[8];
+  sphere_octant_pieces(r, cut, piece);
+  for (int k = first[2]; k <= last[2]; ++k) {
+    const int sz = side[2][k - first[2]];
+    if (sz < 0) continue;
+    for (int j = first[1]; j <= last[1]; ++j) {
+      const int sy = side[1][j - first[1]];
+      if (sy < 0) continue;
+      for (int i = first[0]; i <= last[0]; ++i) {
+        const int sx = side[0][i - first[0]];
+        const long cell = lattice.slot(i, j, k);
+        if (sx < 0 || cell < 0) continue;
+        const double v = piece[sx | sy << 1 | sz << 2];
+        if (v > 0.0) out.push_back({cell, v});
+      }
+    }
+  }
+}
+
+}  // namespace
+
+void append_overlap_volumes(const DistributionMesh &mesh, const Eigen::Vector3d &c, double r,
+                            std::vector<CellWeight> &out)
+{
+  const std::size_t start = out.size();
+  if (const BoxCellLattice *lattice = mesh.lattice()) {
+    append_lattice_overlaps(*lattice, c, r, out);
+    merge_cells(out, start);
+    return;
+  }
+  thread_local std::vector<long> cells;
+  thread_local std::vector<Eigen::Vector3d> lo, hi;
+  cells.clear();
+  mesh.cells_in_sphere(c, r, cells);
+  lo.resize(cells.size());
+  hi.resize(cells.size());
+  for (std::size_t i = 0; i < cells.size(); ++i) mesh.cell_bounds(cells[i], lo[i], hi[i]);
+  append_box_overlaps(c, r, cells, lo, hi, out);
 }
 
 bool boxes_share_face(const Eigen::Vector3d &lo, const Eigen::Vector3d &hi, const Eigen::Vector3d &hlo,
@@ -169,6 +261,10 @@ CartesianGridMesh::CartesianGridMesh(std::vector<double> x, std::vector<double> 
         throw std::invalid_argument("CartesianGridMesh: node coordinates must be strictly increasing");
     n_[d] = int(nodes_[d].size()) - 1;
   }
+  const std::size_t count = std::size_t(n_cells());
+  std::vector<Eigen::Vector3d> lo(count), hi(count);
+  for (long cell = 0; cell < n_cells(); ++cell) cell_bounds(cell, lo[std::size_t(cell)], hi[std::size_t(cell)]);
+  lattice_.build(lo, hi);
 }
 
 CartesianGridMesh CartesianGridMesh::uniform(const Eigen::Vector3d &lo, const Eigen::Vector3d &hi, int nx, int ny,

@@ -359,29 +359,29 @@ double SphereBoxOverlaps::corner(int i, int j, int k)
   return u;
 }
 
-void SphereBoxOverlaps::octant_pieces()
+void sphere_octant_pieces(double r, const double cut[3], double piece[8])
 {
   // U at the folded offsets {free, |cut|} of the three axes, each evaluated once
   double U[2][2][2] = {};
   for (int i = 0; i < 2; ++i)
     for (int j = 0; j < 2; ++j)
       for (int k = 0; k < 2; ++k) {
-        const bool cut = (!i || cut_[0] > -r_) && (!j || cut_[1] > -r_) && (!k || cut_[2] > -r_);
-        if (cut)
-          U[i][j][k] = upper_corner(r_, i ? std::abs(cut_[0]) : kFree, j ? std::abs(cut_[1]) : kFree,
-                                    k ? std::abs(cut_[2]) : kFree);
+        const bool inside = (!i || cut[0] > -r) && (!j || cut[1] > -r) && (!k || cut[2] > -r);
+        if (inside)
+          U[i][j][k] =
+              upper_corner(r, i ? std::abs(cut[0]) : kFree, j ? std::abs(cut[1]) : kFree, k ? std::abs(cut[2]) : kFree);
       }
   // each side of a cut as coefficients of the free and the folded term (the sphere is
   // symmetric): above a >= 0 is {x >= a}, (0, 1); below it, everything minus that, (1, -1);
   // mirrored for a < 0. Without a cut the whole axis counts as the side above, (1, 0)
   double coef[3][2][2];
   for (int a = 0; a < 3; ++a) {
-    if (!(cut_[a] > -r_)) {
+    if (!(cut[a] > -r)) {
       coef[a][0][0] = coef[a][0][1] = 0.0;
       coef[a][1][0] = 1.0, coef[a][1][1] = 0.0;
       continue;
     }
-    const int near = cut_[a] >= 0.0 ? 1 : 0;
+    const int near = cut[a] >= 0.0 ? 1 : 0;
     coef[a][near][0] = 0.0, coef[a][near][1] = 1.0;
     coef[a][1 - near][0] = 1.0, coef[a][1 - near][1] = -1.0;
   }
@@ -395,8 +395,13 @@ void SphereBoxOverlaps::octant_pieces()
       for (int k = 0; k < 2; ++k) Vxy[sx][sy][k] = coef[1][sy][0] * Vx[sx][0][k] + coef[1][sy][1] * Vx[sx][1][k];
   for (int p = 0; p < 8; ++p) {
     const int sx = p & 1, sy = (p >> 1) & 1, sz = (p >> 2) & 1;
-    piece_[p] = std::max(0.0, coef[2][sz][0] * Vxy[sx][sy][0] + coef[2][sz][1] * Vxy[sx][sy][1]);
+    piece[p] = std::max(0.0, coef[2][sz][0] * Vxy[sx][sy][0] + coef[2][sz][1] * Vxy[sx][sy][1]);
   }
+}
+
+void SphereBoxOverlaps::octant_pieces()
+{
+  sphere_octant_pieces(r_, cut_, piece_);
 }
 
 double SphereBoxOverlaps::octant_volume(std::size_t b) const

@@ -1,10 +1,13 @@
 // Particle -> cell distribution (Codina2019 §3.2.3, eq. 3.7): weights sum to 1, conservation,
 // sphere-box overlap against analytic sphere / cap / octant volumes, domain clipping.
 #include "meltdem/coupling/particle_distribution.h"
+#include "meltdem/coupling/box_cell_lattice.h"
 #include "meltdem/coupling/exact_sum.h"
 #include "validation_report.h"
 
+#include <algorithm>
 #include <chrono>
+#include <functional>
 #include <cmath>
 #include <iostream>
 #include <limits>
@@ -254,6 +257,100 @@ TEST(ParticleDistribution, AcrossARefinementLevelJump)
   expect_absolute("overlap across the jump: cells", double(w.size()), 5.0, 0.0);
   expect_absolute("overlap across the jump: max |w - V_cell / V_sphere|", worst, 0.0, 1e-15);
   expect_absolute("overlap across the jump: weights sum", exact_weight_sum(w), 1.0, 1e-15);
+}
+
+namespace {
+
+// the same boxes with their lattice (the path a blockMesh, hexRef8-refined or not, takes)
+class LatticeBoxListMesh : public BoxListMesh {
+ public:
+  BoxCellLattice grid;
+  const BoxCellLattice *lattice() const override { return &grid; }
+};
+
+// a 5 x 4 x 4 graded block of cells of about h, shuffled labels, a hole every 9th slot; cells
+// split into 8 where `refine` draws so (one level, or two for one in five of those): coarse
+// cells span 2 or 4 slots per axis beside finer ones
+LatticeBoxListMesh lattice_mesh(bool refine, double h, unsigned seed)
+{
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(0.6, 1.4);
+  std::uniform_int_distribution<int> pick(0, 99);
+  std::vector<double> planes[3];
+  const int n[3] = {5, 4, 4};
+  for (int a = 0; a < 3; ++a) {
+    planes[a].push_back(0.3 * a * h);
+    for (int i = 0; i < n[a]; ++i) planes[a].push_back(planes[a].back() + h * u(rng));
+  }
+  std::vector<std::pair<Vector3d, Vector3d>> boxes;
+  std::function<void(const Vector3d &, const Vector3d &, int)> split = [&](const Vector3d &lo, const Vector3d &hi,
+                                                                           int level) {
+    if (!refine || level == 2 || pick(rng) >= (level == 0 ? 50 : 20)) return boxes.emplace_back(lo, hi), void();
+    const Vector3d mid = 0.5 * (lo + hi);
+    for (int o = 0; o < 8; ++o) {
+      Vector3d l, m;
+      for (int a = 0; a < 3; ++a) l[a] = (o >> a) & 1 ? mid[a] : lo[a], m[a] = (o >> a) & 1 ? hi[a] : mid[a];
+      split(l, m, level + 1);
+    }
+  };
+  int count = 0;
+  for (int k = 0; k < n[2]; ++k)
+    for (int j = 0; j < n[1]; ++j)
+      for (int i = 0; i < n[0]; ++i)
+        if (++count % 9 != 0)
+          split(Vector3d(planes[0][i], planes[1][j], planes[2][k]),
+                Vector3d(planes[0][i + 1], planes[1][j + 1], planes[2][k + 1]), 0);
+  std::shuffle(boxes.begin(), boxes.end(), rng);
+  LatticeBoxListMesh m;
+  for (const auto &b : boxes) m.add(b.first, b.second);
+  if (!m.grid.build(m.lo, m.hi, 64.0)) throw std::logic_error("lattice_mesh: no lattice");
+  return m;
+}
+
+}  // namespace
+
+// `overlap` read from the lattice's planes (pieces of the sphere where at most one plane cuts
+// each axis, the slots' boxes elsewhere) against the cells' own boxes, cell by cell, on graded
+// lattices with holes and on refined ones whose coarse cells span several slots; spheres from a
+// fifth of a cell to three cells across, inside, on planes and over the edges of the mesh
+TEST(ParticleDistribution, OverlapOnLatticeMatchesCellBoxes)
+{
+  const double h = 1e-5;
+  for (const bool refine : {false, true}) {
+    const LatticeBoxListMesh mesh = lattice_mesh(refine, h, refine ? 5u : 3u);
+    BoxListMesh plain;  // the same cells without the lattice
+    plain.lo = mesh.lo, plain.hi = mesh.hi;
+    Vector3d mlo, mhi;
+    ASSERT_TRUE(mesh.bounds(mlo, mhi));
+    std::mt19937 rng(17u);
+    std::uniform_real_distribution<double> u(-0.1, 1.1), size(0.1, 1.5);
+    std::uniform_int_distribution<int> pick(0, 9);
+    double worst = 0.0;
+    int shared = 0, mismatched = 0, unordered = 0;
+    for (int trial = 0; trial < 3000; ++trial) {
+      Vector3d c = mlo + (mhi - mlo).cwiseProduct(Vector3d(u(rng), u(rng), u(rng)));
+      if (pick(rng) < 3) c[pick(rng) % 3] = mesh.lo[std::size_t(trial) % mesh.lo.size()][pick(rng) % 3];
+      const double r = h * (pick(rng) < 8 ? 0.5 * size(rng) : 1.5 * size(rng));
+      std::vector<CellWeight> got, want;
+      append_overlap_volumes(mesh, c, r, got);
+      append_overlap_volumes(plain, c, r, want);
+      if (got.size() != want.size()) {
+        ++mismatched;
+        continue;
+      }
+      for (std::size_t i = 0; i < got.size(); ++i) {
+        mismatched += got[i].cell != want[i].cell;
+        unordered += i > 0 && got[i].cell <= got[i - 1].cell;
+        worst = std::max(worst, std::abs(got[i].weight - want[i].weight) / (r * r * r));
+      }
+      shared += got.size() > 1;
+    }
+    const std::string mesh_name = refine ? "refined lattice" : "graded lattice with holes";
+    expect_absolute(mesh_name + ": spheres whose cells differ from the boxes' path", double(mismatched), 0.0, 0.0);
+    expect_absolute(mesh_name + ": max |V_lattice - V_boxes| / r^3", worst, 0.0, 1e-13);
+    expect_absolute(mesh_name + ": cells out of ascending order", double(unordered), 0.0, 0.0);
+    EXPECT_GT(shared, 1000) << "too few spheres over several cells to test anything";
+  }
 }
 
 TEST(ParticleDistribution, WeightsSumToOneAndMassConserved)

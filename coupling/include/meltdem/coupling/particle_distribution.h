@@ -14,6 +14,7 @@
 // distributed quantity q * w_i sums back to q to round-off.
 // `overlap` uses the closed-form sphere-box volume (sphere_box_overlap.h), each plane
 // triple the cells share evaluated once per particle.
+#include "meltdem/coupling/box_cell_lattice.h"
 #include "meltdem/coupling/sphere_box_overlap.h"
 
 #include <Eigen/Core>
@@ -36,6 +37,9 @@ class DistributionMesh {
   virtual double cell_volume(long cell) const = 0;
   // every cell whose bounding box intersects the sphere (a superset is allowed)
   virtual void cells_in_sphere(const Eigen::Vector3d &c, double r, std::vector<long> &cells) const = 0;
+  // the cells as a lattice of boxes (box_cell_lattice.h), where they are one: `overlap` then
+  // takes the planes from it instead of the cells' boxes; nullptr otherwise
+  virtual const BoxCellLattice *lattice() const { return nullptr; }
   // box holding every cell's bounding box; false when there are no cells
   virtual bool bounds(Eigen::Vector3d &lo, Eigen::Vector3d &hi) const = 0;
 };
@@ -54,6 +58,7 @@ class CartesianGridMesh : public DistributionMesh {
   double cell_volume(long cell) const override;
   void cells_in_sphere(const Eigen::Vector3d &c, double r, std::vector<long> &cells) const override;
   bool bounds(Eigen::Vector3d &lo, Eigen::Vector3d &hi) const override;
+  const BoxCellLattice *lattice() const override { return &lattice_; }
 
   long n_cells() const { return long(n_[0]) * n_[1] * n_[2]; }
   long index(int i, int j, int k) const { return i + long(n_[0]) * (j + long(n_[1]) * k); }
@@ -61,6 +66,7 @@ class CartesianGridMesh : public DistributionMesh {
  private:
   std::vector<double> nodes_[3];
   int n_[3];
+  BoxCellLattice lattice_;  // the same cells, slot = cell id
   void ijk(long cell, int &i, int &j, int &k) const;
 };
 

@@ -25,6 +25,11 @@ double sphere_box_overlap_quadrature(const Eigen::Vector3d &c, double r, const E
 // Area of the disk y^2 + z^2 <= R^2 (centred at 0) with y <= b, z <= c (closed form).
 double disk_quadrant_area(double R, double b, double c);
 
+// The eight pieces of the ball of radius r (centred at 0) that one plane per axis cuts it
+// into: cut[a] is the plane's offset along axis a, <= -r where none cuts (the whole axis then
+// counts as the side above); the piece with bit a of its index set lies above cut[a].
+void sphere_octant_pieces(double r, const double cut[3], double piece[8]);
+
 // Overlaps of one sphere with many boxes whose faces lie on shared planes (the cells around
 // a particle): the corner volume U is evaluated once per distinct triple of planes, so a
 // particle over n x n x n cells costs (n + 1)^3 corner terms, not 8 n^3.
