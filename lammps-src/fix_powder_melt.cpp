@@ -892,11 +892,18 @@ void FixPowderMelt::records(std::vector<mc::ExchangeRecord> &out, bool with_fini
   // by ID: the coupling's sums then do not depend on LAMMPS's atom order, which a sort or
   // a restart changes (a resumed run equals the uninterrupted one bit for bit)
   const std::vector<int> &order = local_order_by_tag();
-  std::vector<std::pair<tagint, int>> gone;  // -1 - k: finished record k, by tag
-  for (std::size_t k = 0; with_finished && k < finished.size(); ++k)
-    gone.emplace_back(tagint(finished[k].id), -1 - int(k));
-  std::sort(gone.begin(), gone.end());
+  if (!with_finished || finished.empty()) {
+    // the atoms read in slot order, each record written to its place by tag (every place
+    // once: the records already there are overwritten, not made afresh)
+    out.resize(order.size());
+    for (int i = 0; i < atom->nlocal; i++)
+      if (tag_rank[std::size_t(i)] >= 0) out[std::size_t(tag_rank[std::size_t(i)])] = record(i);
+    return;
+  }
   out.clear();
+  std::vector<std::pair<tagint, int>> gone;  // -1 - k: finished record k, by tag
+  for (std::size_t k = 0; k < finished.size(); ++k) gone.emplace_back(tagint(finished[k].id), -1 - int(k));
+  std::sort(gone.begin(), gone.end());
   out.reserve(order.size() + gone.size());
   auto g = gone.cbegin();
   for (const int i : order) {
@@ -908,26 +915,25 @@ void FixPowderMelt::records(std::vector<mc::ExchangeRecord> &out, bool with_fini
 
 const std::vector<int> &FixPowderMelt::local_order_by_tag() const
 {
-  // the last order still holds while the group's local atoms are the same ones in the same
-  // slots: every listed slot in the group, tags strictly ascending and none left out
+  // the last order still holds while every local slot holds the atom it held then (the
+  // same tag, in or out of the group): one pass in slot order
   const tagint *tag = atom->tag;
   const int *mask = atom->mask;
   const int nlocal = atom->nlocal;
-  std::size_t in_group = 0;
-  for (int i = 0; i < nlocal; i++) in_group += (mask[i] & groupbit) ? 1 : 0;
-  bool valid = tag_order.size() == in_group;
-  for (std::size_t k = 0; valid && k < tag_order.size(); ++k) {
-    const int i = tag_order[k];
-    valid = i < nlocal && (mask[i] & groupbit) && (k == 0 || tag[tag_order[k - 1]] < tag[i]);
-  }
+  bool valid = order_tags.size() == std::size_t(nlocal);
+  for (int i = 0; valid && i < nlocal; i++) valid = order_tags[std::size_t(i)] == ((mask[i] & groupbit) ? tag[i] : -1);
   if (valid) return tag_order;
   std::vector<std::pair<tagint, int>> by_tag;
-  by_tag.reserve(in_group);
+  order_tags.assign(std::size_t(nlocal), -1);
+  tag_rank.assign(std::size_t(nlocal), -1);
   for (int i = 0; i < nlocal; i++)
-    if (mask[i] & groupbit) by_tag.emplace_back(tag[i], i);
+    if (mask[i] & groupbit) by_tag.emplace_back(tag[i], i), order_tags[std::size_t(i)] = tag[i];
   std::sort(by_tag.begin(), by_tag.end());
   tag_order.clear();
-  for (const auto &t : by_tag) tag_order.push_back(t.second);
+  for (const auto &t : by_tag) {
+    tag_rank[std::size_t(t.second)] = int(tag_order.size());
+    tag_order.push_back(t.second);
+  }
   return tag_order;
 }
 

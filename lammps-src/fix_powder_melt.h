@@ -140,6 +140,8 @@ class FixPowderMelt : public Fix {
   // the local atoms of the group by ascending tag (kept while LAMMPS moves no atom)
   const std::vector<int> &local_order_by_tag() const;
   mutable std::vector<int> tag_order;
+  mutable std::vector<tagint> order_tags;  // per local slot, its tag when tag_order was made (-1: not in the group)
+  mutable std::vector<int> tag_rank;       // per local slot, its index in tag_order (-1: not in the group)
   meltdem::coupling::MeltMaterial mat;
   meltdem::coupling::DragModel drag_model;
   double T0;
