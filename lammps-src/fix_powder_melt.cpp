@@ -843,7 +843,8 @@ int FixPowderMelt::maxsize_restart()
 
 double FixPowderMelt::memory_usage()
 {
-  return (double)atom->nmax * (NCOL + NHELD + NCOEF) * sizeof(double);
+  return (double)atom->nmax * (NCOL + NHELD + NCOEF) * sizeof(double) + (double)tag_order.capacity() * sizeof(int) +
+         (double)tag_rank.capacity() * sizeof(int) + (double)order_tags.capacity() * sizeof(tagint);
 }
 
 /* ----------------------------------------------------------------------
