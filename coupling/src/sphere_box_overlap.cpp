@@ -322,7 +322,7 @@ void SphereBoxOverlaps::reset(const Eigen::Vector3d &c, double r, const std::vec
       }
   }
   if (octants_) {
-    octant_pieces();
+    sphere_octant_pieces(r_, cut_, piece_);
     return;
   }
   for (int a = 0; a < 3; ++a) {
@@ -397,11 +397,6 @@ void sphere_octant_pieces(double r, const double cut[3], double piece[8])
     const int sx = p & 1, sy = (p >> 1) & 1, sz = (p >> 2) & 1;
     piece[p] = std::max(0.0, coef[2][sz][0] * Vxy[sx][sy][0] + coef[2][sz][1] * Vxy[sx][sy][1]);
   }
-}
-
-void SphereBoxOverlaps::octant_pieces()
-{
-  sphere_octant_pieces(r_, cut_, piece_);
 }
 
 double SphereBoxOverlaps::octant_volume(std::size_t b) const

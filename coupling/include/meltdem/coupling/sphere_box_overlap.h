@@ -55,7 +55,6 @@ class SphereBoxOverlaps {
   bool octants_ = false;
   double cut_[3] = {0.0, 0.0, 0.0};  // the cutting plane's offset, or -r_ where none cuts
   double piece_[8] = {};             // piece with bit a set: the side above cut_[a]
-  void octant_pieces();
   double octant_volume(std::size_t i) const;
 };
 
