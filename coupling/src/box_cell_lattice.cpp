@@ -97,15 +97,8 @@ long BoxCellLattice::find_cell(const Eigen::Vector3d &p) const
 
 void BoxCellLattice::cells_in_box(const Eigen::Vector3d &lo, const Eigen::Vector3d &hi, std::vector<long> &cells) const
 {
-  if (slots_.empty()) return;
   int first[3], last[3];
-  for (int a = 0; a < 3; ++a) {
-    const std::vector<double> &q = planes_[a];
-    // intervals [q[i], q[i+1]] with q[i+1] >= lo and q[i] <= hi
-    first[a] = std::max(0, bound(a, lo[a], false) - 1);
-    last[a] = std::min(n_[a] - 1, bound(a, hi[a], true) - 1);
-    if (!(lo[a] <= q.back() && hi[a] >= q.front()) || first[a] > last[a]) return;
-  }
+  if (!slot_range(lo, hi, first, last)) return;
   const std::size_t start = cells.size();
   for (int k = first[2]; k <= last[2]; ++k)
     for (int j = first[1]; j <= last[1]; ++j)
@@ -120,14 +113,15 @@ void BoxCellLattice::cells_in_box(const Eigen::Vector3d &lo, const Eigen::Vector
   if (spanning_) cells.erase(std::unique(cells.begin() + std::ptrdiff_t(start), cells.end()), cells.end());
 }
 
-bool BoxCellLattice::slot_range(const Eigen::Vector3d &c, double r, int first[3], int last[3]) const
+bool BoxCellLattice::slot_range(const Eigen::Vector3d &lo, const Eigen::Vector3d &hi, int first[3], int last[3]) const
 {
   if (slots_.empty()) return false;
   for (int a = 0; a < 3; ++a) {
     const std::vector<double> &q = planes_[a];
-    if (!(c[a] - r <= q.back() && c[a] + r >= q.front())) return false;
-    first[a] = std::max(0, bound(a, c[a] - r, false) - 1);
-    last[a] = std::min(n_[a] - 1, bound(a, c[a] + r, true) - 1);
+    if (!(lo[a] <= q.back() && hi[a] >= q.front())) return false;
+    // intervals [q[i], q[i+1]] with q[i+1] >= lo and q[i] <= hi
+    first[a] = std::max(0, bound(a, lo[a], false) - 1);
+    last[a] = std::min(n_[a] - 1, bound(a, hi[a], true) - 1);
     if (first[a] > last[a]) return false;
   }
   return true;
@@ -137,7 +131,7 @@ void BoxCellLattice::slots_in_sphere(const Eigen::Vector3d &c, double r, std::ve
                                      std::vector<Eigen::Vector3d> &lo, std::vector<Eigen::Vector3d> &hi) const
 {
   int first[3], last[3];
-  if (!slot_range(c, r, first, last)) return;
+  if (!slot_range(c.array() - r, c.array() + r, first, last)) return;
   thread_local std::vector<double> out2[3];  // squared distance from the centre to each interval, per axis
   for (int a = 0; a < 3; ++a) {
     const std::vector<double> &q = planes_[a];

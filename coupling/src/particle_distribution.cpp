@@ -104,7 +104,7 @@ void append_lattice_overlaps(const BoxCellLattice &lattice, const Eigen::Vector3
                              std::vector<CellWeight> &out)
 {
   int first[3], last[3];
-  if (!lattice.slot_range(c, r, first, last)) return;
+  if (!lattice.slot_range(c.array() - r, c.array() + r, first, last)) return;
   bool octants = true;  // at most one plane inside the sphere's extent per axis, none of them the lattice's edge
   for (int a = 0; a < 3; ++a)
     octants = octants && last[a] - first[a] <= 1 && lattice.plane(a, first[a]) <= c[a] - r &&

@@ -28,9 +28,9 @@ class BoxCellLattice {
   // every cell whose closed box overlaps the closed box [lo, hi], in ascending order
   void cells_in_box(const Eigen::Vector3d &lo, const Eigen::Vector3d &hi, std::vector<long> &cells) const;
 
-  // the slot intervals [first[a], last[a]] per axis whose closed ranges meet [c - r, c + r];
-  // false when the box misses the lattice
-  bool slot_range(const Eigen::Vector3d &c, double r, int first[3], int last[3]) const;
+  // the slot intervals [first[a], last[a]] per axis whose closed ranges meet the closed box
+  // [lo, hi]; false when the box misses the lattice
+  bool slot_range(const Eigen::Vector3d &lo, const Eigen::Vector3d &hi, int first[3], int last[3]) const;
 
   // every slot the sphere (c, r) reaches, appended in lattice order as its cell and the slot's
   // box from the planes (the cell's own box unless the cell spans several slots, which then
@@ -42,8 +42,6 @@ class BoxCellLattice {
   double plane(int axis, int i) const { return planes_[axis][std::size_t(i)]; }
   // the cell of slot (i, j, k), -1 for a hole
   long slot(int i, int j, int k) const { return slots_[(std::size_t(k) * n_[1] + std::size_t(j)) * n_[0] + i]; }
-  // some cell covers more than one slot
-  bool spanning() const { return spanning_; }
 
  private:
   // std::upper_bound (upper) or std::lower_bound of x in planes_[axis], as an index, found
