@@ -20,6 +20,8 @@ LAMMPS fix wall/reflect); laser power and powder feed are halved accordingly.
 See README.md next to this file for the model, what it leaves out and the results.
 """
 import argparse
+import copy
+import glob
 import json
 import math
 import os
@@ -142,6 +144,17 @@ class Geometry:
     def centres(self):
         c = [0.5 * (f[1:] + f[:-1]) for f in (self.xf, self.yf, self.zf)]
         return c
+
+    def split(self, levels):
+        """The lattice of the finest cells of a mesh refined `levels` times from this one: every
+        cell cut into 2^levels per axis at equal spacing (hexRef8 splits at the midpoints)."""
+        g = copy.copy(self)
+        k = 2 ** levels
+        g.xf, g.yf, g.zf = (np.append(f[:-1, None] + np.outer(np.diff(f), np.arange(k) / k), f[-1])
+                            for f in (self.xf, self.yf, self.zf))
+        g.dx = self.dx / k
+        g.n = tuple(k * n for n in self.n)
+        return g
 
     def cells(self):
         return self.n[0] * self.n[1] * self.n[2]
@@ -326,7 +339,8 @@ def build(a):
             raise SystemExit(f"lmd-track: {case} exists and is not a scene case; not overwriting it")
         shutil.rmtree(case)
     os.makedirs(case)
-    g = Geometry(a.dx, a.track)
+    a.refine = getattr(a, "refine", 0)
+    g = Geometry(a.dx * 2 ** a.refine, a.track)        # the base mesh (refined to a.dx where needed)
     a.end = a.track / PROCESS["speed"]
     write_mesh(case, g)
     xc, yc, zc = g.centres()
@@ -363,7 +377,7 @@ def build(a):
     dt_grain = a.cells_per_step * a.dx / a.powder_speed
     a.max_dt = min(dt_cap, dt_grain) if a.particles else dt_cap
     fc.control_dict(case, "meltdemFoam", a.end, min(1e-5, a.max_dt), a.write, max_co=0.4, max_alpha_co=0.4,
-                    max_dt=a.max_dt)
+                    max_dt=a.max_dt, extra=fc.CELL_GEOMETRY_FUNCTIONS if a.refine else "")
     fc.fv_schemes(case)
     fc.fv_solution(case, n_correctors=2)
     cc.exact_solves(case)   # metal mass to round-off needs a tight alpha solve
@@ -395,15 +409,27 @@ particles
     demStepsPerFluidStep auto;
     laserShadow     {"on" if a.laser_shadow else "off"};   // powder absorption is negligible in LMD (thesis 4.1)
 }}
-""")  # noqa: E501  (a long line of the dictionary written verbatim)
+{refinement_dict(a) if a.refine else ""}""")  # noqa: E501  (a long line of the dictionary written verbatim)
     dem_dt = write_lammps(case, g, a)
     meta = dict(vars(a), scene="lmd-track", cells=g.cells(), n=g.n, x_start=g.x_start, x_end=g.x_end, dem_dt=dem_dt,
                 dt_capillary=dt_cap)
     with open(os.path.join(case, "scene.json"), "w") as f:
         json.dump(meta, f, indent=1)
-    print(f"lmd-track: case {case}: {g.n[0]}x{g.n[1]}x{g.n[2]} = {g.cells()} cells (fine {a.dx * 1e3:g} mm), "
+    print(f"lmd-track: case {case}: {g.n[0]}x{g.n[1]}x{g.n[2]} = {g.cells()} cells "
+          f"({f'base {g.dx * 1e3:g} mm refined to ' if a.refine else 'fine '}{a.dx * 1e3:g} mm), "
           f"track {a.track * 1e3:g} mm = {a.end:.3g} s, DEM step {dem_dt:.3g} s, capillary step {dt_cap:.3g} s")
     return case
+
+
+def refinement_dict(a):
+    """refinement{} of a --refine run: the finest cells in the melt pool and the metal within 300 K
+    of melting, under the beam (1.2 radii, 0.5 mm deep) and where it will be over the next half beam
+    radius of travel, and around the grains near either (with powder); the base mesh elsewhere."""
+    ahead = max(a.refine_interval, int(round(0.25 * PROCESS["spot_diameter"] / (PROCESS["speed"] * a.max_dt))))
+    grains = [("grains", "type particles; diameters 1; near (pool beam);")] if a.particles else []
+    return fc.refinement_dict(a.refine, a.refine_interval,
+                              [("meltPool", "belowSolidus 300;"),
+                               ("laser", f"radii 1.2; depth 5e-4; lookAhead {ahead};")] + grains)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -421,7 +447,7 @@ def run(case, np_=1):
         rc = fc.run(["mpirun", "--allow-run-as-root", "--oversubscribe", "-np", str(np_), solver, "-parallel"],
                     case, "log.meltdemFoam", env=env, check=False)
         if rc == 0:
-            fc.run(["reconstructPar"], case, "log.reconstructPar")
+            fc.reconstruct(case)          # reconstructParMesh first on the times a refinement changed
     wall = time.time() - t0
     meta = json.load(open(os.path.join(case, "scene.json")))
     meta.update(wall_seconds=wall, np=np_, rc=rc)
@@ -434,17 +460,18 @@ def run(case, np_=1):
 
 
 # ---------------------------------------------------------------------------------------------
-def read_field(path):
-    return fc.read_internal(path)
-
-
 def times(case):
     return [d for d in fc.time_dirs(case) if float(d) > 0]
 
 
 def analyse(case, quiet=False):
     meta = json.load(open(os.path.join(case, "scene.json")))
-    g = Geometry(meta["dx"], meta["track"])
+    levels = meta.get("refine", 0)
+    base = Geometry(meta["dx"] * 2 ** levels, meta["track"])
+    g = base.split(levels)
+
+    def read_field(time, name):          # on the finest cells' lattice (a refined cell fills those it covers)
+        return fc.graded_lattice_field(case, time, name, (base.xf, base.yf, base.zf), levels).ravel()
     xc, yc, zc = g.centres()
     nx, ny, nz = g.n
     tds = times(case)
@@ -455,12 +482,12 @@ def analyse(case, quiet=False):
     for d in tds:
         p = os.path.join(case, d, "liquidFraction")
         if os.path.exists(p):
-            f = read_field(p)
-            if f.ndim:
+            f = read_field(d, "liquidFraction")
+            if f.size > 1:
                 fmax = np.maximum(fmax, f)
     fmax = fmax.reshape(nz, ny, nx)
     last = tds[-1]
-    alpha = read_field(os.path.join(case, last, "alpha.metal")).reshape(nz, ny, nx)
+    alpha = read_field(last, "alpha.metal").reshape(nz, ny, nx)
     dz = np.diff(g.zf)
     # metal column height above the original surface, h(x, y) = sum alpha dz - substrate
     h = np.einsum("kji,k->ji", alpha, dz) - PROCESS["substrate_thickness"]
@@ -514,11 +541,13 @@ def analyse(case, quiet=False):
         "section_x_mm": [1e3 * float(rows[0, 0]), 1e3 * float(rows[-1, 0])],
         "time_s": float(tds[-1]) if not have_ledger else float(led["time"][-1]),
         "cells": int(g.cells()), "dx_mm": 1e3 * meta["dx"], "track_mm": 1e3 * meta["track"],
+        "refine_levels": levels, "base_cells": int(base.cells()), "most_cells": most_cells(case, base.cells()),
+        "cpu_seconds": fc.execution_time(case),
         "absorptivity": meta["absorptivity"], "powder_spot_over_laser_spot": meta.get("powder_spot", 1.0),
         "wall_seconds": meta.get("wall_seconds"),
     }
     if not have_ledger:
-        summary.update(geometric_capture(case, g, meta, tds))
+        summary.update(geometric_capture(g, meta, tds, read_field))
         # the bead a parabolic cross-section of the fused width would have with that capture:
         # area = eta feed / (rho v), height = 1.5 area / width
         area = summary["geometric_capture_pct"] / 100 * PROCESS["feed"] / (METAL["rho"] * PROCESS["speed"])
@@ -546,7 +575,7 @@ def analyse(case, quiet=False):
     return summary
 
 
-def geometric_capture(case, g, meta, tds, n_last=3):
+def geometric_capture(g, meta, tds, read_field, n_last=3):
     """Bare track (no powder): the share of the powder spot (its rings, each uniform) that falls
     on the pool surface (top metal cells with liquid fraction >= 0.5, the pool at the surface),
     averaged over the last written times: Codina2019's 'geometrical matching of the powder
@@ -562,7 +591,7 @@ def geometric_capture(case, g, meta, tds, n_last=3):
     sub = (np.arange(8) + 0.5) / 8
     out = []
     for d in tds[-n_last:]:
-        fl = read_field(os.path.join(case, d, "liquidFraction")).reshape(nz, ny, nx)[ksurf]
+        fl = read_field(d, "liquidFraction").reshape(nz, ny, nx)[ksurf]
         xbeam = g.x_start + PROCESS["speed"] * float(d)
         got = 0.0
         for j in range(ny):
@@ -579,6 +608,14 @@ def geometric_capture(case, g, meta, tds, n_last=3):
         out.append(got)
     eta = float(np.mean(out))
     return {"geometric_capture_pct": 100.0 * eta, "geometric_capture_spread_pct": 100.0 * float(np.ptp(out))}
+
+
+def most_cells(case, base_cells):
+    """The most cells the mesh had (the refinement ledger's cellsAfter; the base mesh without one)."""
+    if not glob.glob(os.path.join(case, "postProcessing", "refinement", "*", "refinement.csv")):
+        return int(base_cells)
+    rows, _ = fc.refinement_ledger(case)
+    return int(max([base_cells] + [int(r["cellsAfter"]) for r in rows]))
 
 
 def lammps_molten(case):
@@ -660,6 +697,10 @@ def main(argv=None):
     ap.add_argument("--no-particles", dest="particles", action="store_false",
                     help="laser only (no powder): the bare melt track")
     ap.add_argument("--log-every", type=float, default=2e-3, help="powder log interval [s]")
+    ap.add_argument("--refine", type=int, default=0, metavar="L",
+                    help="adaptive refinement: base cells 2^L x --dx, refined to --dx in the pool, under the beam "
+                    "and its path ahead and around the grains near them (refinement{})")
+    ap.add_argument("--refine-interval", type=int, default=1, metavar="N", help="fluid steps between mesh updates")
     ap.add_argument("--np", type=int, default=1)
     a = ap.parse_args(argv)
     a.case = os.path.abspath(a.case)

@@ -295,7 +295,58 @@ labelList meshRefinement::requestedLevel(const refinementCriterion::state& s) co
         }
         level.transfer(wider);
     }
+    equalLevelsAcrossInterface(s, level);
     return level;
+}
+
+
+void meshRefinement::equalLevelsAcrossInterface
+(
+    const refinementCriterion::state& s, labelList& level
+) const
+{
+    // the curvature of a flat interface is zero only where the cells on its two sides are
+    // alike: a level jump across it gives a spurious curvature and parasitic currents
+    const volScalarField* alphaPtr = mesh_.findObject<volScalarField>(s.alphaName);
+    if (!alphaPtr) return;
+    const scalarField& a = alphaPtr->primitiveField();
+    const labelUList& own = mesh_.owner();
+    const labelUList& nei = mesh_.neighbour();
+    const label start = mesh_.nInternalFaces();
+    auto crossed = [](const scalar aP, const scalar aN) { return (aP < 0.5) != (aN < 0.5); };
+    scalarField aAcross;
+    syncTools::swapBoundaryCellList(mesh_, a, aAcross);
+    for (label pass = 0; pass < 100; ++pass)
+    {
+        label raised = 0;
+        forAll(nei, facei)
+        {
+            label& lP = level[own[facei]];
+            label& lN = level[nei[facei]];
+            if (lP != lN && crossed(a[own[facei]], a[nei[facei]]))
+            {
+                ++raised;
+                lP = lN = max(lP, lN);
+            }
+        }
+        labelList across;
+        syncTools::swapBoundaryCellList(mesh_, level, across);
+        forAll(across, bFacei)
+        {
+            const label facei = start + bFacei;
+            label& lP = level[own[facei]];
+            if
+            (
+                mesh_.boundaryMesh()[mesh_.boundaryMesh().whichPatch(facei)].coupled()
+             && across[bFacei] > lP && crossed(a[own[facei]], aAcross[bFacei])
+            )
+            {
+                ++raised;
+                lP = across[bFacei];
+            }
+        }
+        if (returnReduce(raised, sumOp<label>()) == 0) break;
+    }
 }
 
 

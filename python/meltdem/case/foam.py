@@ -173,7 +173,10 @@ maxDeltaT {max_dt!r};
 """)
 
 
-def fv_schemes(case, extra_div=""):
+def fv_schemes(case, extra_div="", alpha="alpha.metal"):
+    """snGrad(alpha) and snGrad(rho) uncorrected: the surface forces' and gravity's gradients (on
+    refined meshes the corrected scheme's non-orthogonal part puts a force on a fluid at rest;
+    on orthogonal meshes the two schemes are the same)."""
     dictionary(case, "system/fvSchemes", f"""ddtSchemes {{ default Euler; }}
 gradSchemes {{ default Gauss linear; }}
 divSchemes
@@ -188,7 +191,7 @@ divSchemes
 }}
 laplacianSchemes {{ default Gauss linear corrected; }}
 interpolationSchemes {{ default linear; }}
-snGradSchemes {{ default corrected; }}
+snGradSchemes {{ default corrected; snGrad({alpha}) uncorrected; snGrad(rho) uncorrected; }}
 """)
 
 
@@ -384,6 +387,37 @@ def lattice_field(case, time, name, n_fine, h, origin=(0.0, 0.0, 0.0)):
             for dy in range(k):
                 for dx in range(k):
                     out[lo[sel, 2] + dz, lo[sel, 1] + dy, lo[sel, 0] + dx] = values[sel]
+    return out
+
+
+def graded_lattice_field(case, time, name, base_faces, levels):
+    """A written field on the lattice of the finest cells of a graded block (base_faces = the x, y, z
+    face coordinates of the base mesh, every base cell cut into 2^levels per axis), as an (nz, ny, nx)
+    array: as written on the base mesh; on a refined one (the time has the C and V of
+    CELL_GEOMETRY_FUNCTIONS) each cell fills the finest cells it covers, found from its base cell and
+    its level (hexRef8 halves every edge)."""
+    k = 2 ** levels
+    n_base = [len(f) - 1 for f in base_faces]
+    values = np.asarray(read_internal(os.path.join(case, time, name)), dtype=float)
+    if not os.path.exists(os.path.join(case, time, "C")):
+        values = (values * np.ones(int(np.prod(n_base)))).reshape(n_base[::-1])
+        return values.repeat(k, axis=0).repeat(k, axis=1).repeat(k, axis=2)
+    C = np.asarray(read_internal(os.path.join(case, time, "C")), dtype=float).reshape(-1, 3)
+    V = np.asarray(read_internal(os.path.join(case, time, "V")), dtype=float) * np.ones(len(C))
+    values = values * np.ones(len(C))
+    base = [np.clip(np.searchsorted(f, C[:, d]) - 1, 0, len(f) - 2) for d, f in enumerate(base_faces)]
+    widths = [np.diff(f)[i] for f, i in zip(base_faces, base)]
+    level = np.rint(np.log2(widths[0] * widths[1] * widths[2] / V) / 3).astype(int)
+    span = k >> level                                      # finest cells per edge of each cell
+    lo = [i * k + np.floor((C[:, d] - f[i]) / w * (1 << level)).astype(int) * span
+          for d, (f, i, w) in enumerate(zip(base_faces, base, widths))]
+    out = np.full([n * k for n in n_base[::-1]], np.nan)
+    for s in np.unique(span):
+        sel = np.nonzero(span == s)[0]
+        for dz in range(s):
+            for dy in range(s):
+                for dx in range(s):
+                    out[lo[2][sel] + dz, lo[1][sel] + dy, lo[0][sel] + dx] = values[sel]
     return out
 
 

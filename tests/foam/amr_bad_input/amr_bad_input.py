@@ -6,7 +6,8 @@ constant/meltdemProperties refinement{} runs three steps cleanly, refining at it
 then it is broken one thing at a time: a 2D mesh (empty front and back), a mesh of prisms, an
 unknown criterion type, a field criterion on a field the run lacks, levels out of range or beyond
 the label range, an unknown entry, a user-written dynamicMeshDict next to refinement{}, OpenFOAM's
-own dynamicRefineFvMesh without refinement{}, criteria whose switch is off. Each variant must
+own dynamicRefineFvMesh without refinement{}, criteria whose switch is off, a corrected
+snGrad(alpha.metal) or snGrad(rho) (surface and gravity forces on split faces). Each variant must
 exit non-zero without a signal, print a FOAM FATAL (IO) ERROR naming the entry, and take no step.
 usage: amr_bad_input.py [--keep]
 """
@@ -59,6 +60,10 @@ VARIANTS = {
                                  {"energy": "off"}, ["meltPool", "energy"]),
     "laser_without_laser": ("laser criterion with the laser off", refinement("laser { level 1; }"), "box", {},
                             ["laser"]),
+    "corrected_alpha_sn_grad": ("snGrad(alpha.metal) corrected", refinement(), "box+corrected alpha.metal", {},
+                                ["snGradSchemes", "snGrad(alpha.metal)", "uncorrected"]),
+    "corrected_rho_sn_grad": ("snGrad(rho) corrected", refinement(), "box+corrected rho", {},
+                              ["snGradSchemes", "snGrad(rho)", "uncorrected"]),
 }
 
 USER_DICT = """dynamicFvMesh dynamicRefineFvMesh;
@@ -110,6 +115,10 @@ def build(case, text, kind, physics):
     fc.meltdem_properties(case, physics=ph, extra=METAL + text)
     fc.control_dict(case, "meltdemFoam", 3e-6, 1e-6, 3e-6, adjustable=False)
     fc.fv_schemes(case, extra_div="    div(rhoCpPhi,T) Gauss upwind;\n")
+    if kind.startswith("box+corrected"):
+        path = os.path.join(case, "system", "fvSchemes")
+        text = open(path).read().replace(f"snGrad({kind.split()[1]}) uncorrected;", "")
+        open(path, "w").write(text)
     fc.fv_solution(case, p_ref_cell=0, extra_solvers='    "T.*" { solver PBiCGStab; preconditioner DILU; '
                                                      'tolerance 1e-12; relTol 0; }\n')
     fc.run(["blockMesh"], case, "log.blockMesh")
