@@ -10,6 +10,7 @@ Writes amr_lmd.md and amr_lmd.png next to this script.
 
     /usr/bin/python3 bench/amr_lmd.py [--pairs 0.25:1] [--variant full] [--track MM] [--coupled]
                                       [--refine-interval N] [--jobs 2] [--work DIR] [--out DIR]
+                                      [--from-results]
 
 Run by hand (the thesis's 0.25 mm cells: the uniform bare track takes about 25 min of CPU).
 """
@@ -57,11 +58,17 @@ def result(work, a, h_mm, levels):
 def write(rows, a, out):
     what = "coupled (powder stream on)" if a.coupled else "bare track (no powder)"
     lines = ["# Adaptive refinement vs the uniform finest mesh (lmd-track)", "",
-             f"`bench/amr_lmd.py`: {__doc__.split(chr(10) + chr(10))[0].split(': ', 1)[1]} Here: {a.variant} "
-             f"variant, {what}, mesh updated every {a.refine_interval} fluid step(s); one rank; CPU = the "
-             "solver's ExecutionTime. Finest cell in um (250 um = the thesis's 0.25 mm). Capture: the "
-             "deposition efficiency of a coupled run, the geometric capture (share of the powder spot on "
-             "the pool surface) of a bare track.", ""]
+             "`bench/amr_lmd.py`: examples/lmd-track (Codina2019 §4.1), for each finest cell h the uniform "
+             "graded mesh of h and the base mesh of 2^L h refined to h by the scene's refinement{} (the melt "
+             "pool and the metal within 300 K of melting, the beam's footprint and its path over the next "
+             "half beam radius, the grains near either). Reported: bead (fused) width, height and "
+             "penetration at the measured section (on the lattice of the finest cells), the capture, most "
+             "cells, solver CPU (LAMMPS included), the change against the uniform run and the CPU ratio "
+             f"uniform/AMR. Here: {a.variant} variant, {what}, mesh updated every {a.refine_interval} fluid "
+             "step(s); one rank; CPU = the solver's ExecutionTime. Finest cell in um (250 um = the thesis's "
+             "0.25 mm). Capture: the deposition efficiency of a coupled run, the geometric capture (share of "
+             "the powder spot on the pool surface) of a bare track. Width and penetration are read where the "
+             "liquid fraction crosses 1/2 between cell centres, so they move in steps of a cell.", ""]
     lines += amr_pairs.table(rows, [("width_mm", "width [mm]", "{:.3f}", True),
                                     ("height_mm", "height [mm]", "{:.3f}", False),
                                     ("penetration_mm", "penetration [mm]", "{:.3f}", True),
@@ -81,8 +88,12 @@ def main():
     ap.add_argument("--jobs", type=int, default=1, help="2: the two runs of a pair at once (CPU is per run)")
     ap.add_argument("--work", default="/tmp/meltdem-amr-lmd")
     ap.add_argument("--out", default=HERE)
+    ap.add_argument("--from-results", action="store_true", help="only write the table from WORK/results.json")
     a = ap.parse_args()
     os.makedirs(a.work, exist_ok=True)
+    if a.from_results:
+        write(json.load(open(os.path.join(a.work, "results.json"))), a, a.out)
+        return 0
     rows = []
     for pair in a.pairs.split(","):
         h, levels = float(pair.split(":")[0]), int(pair.split(":")[1])
