@@ -339,7 +339,6 @@ def build(a):
             raise SystemExit(f"lmd-track: {case} exists and is not a scene case; not overwriting it")
         shutil.rmtree(case)
     os.makedirs(case)
-    a.refine = getattr(a, "refine", 0)
     g = Geometry(a.dx * 2 ** a.refine, a.track)        # the base mesh (refined to a.dx where needed)
     a.end = a.track / PROCESS["speed"]
     write_mesh(case, g)

@@ -378,15 +378,21 @@ def lattice_field(case, time, name, n_fine, h, origin=(0.0, 0.0, 0.0)):
     C = np.asarray(read_internal(os.path.join(case, time, "C")), dtype=float).reshape(-1, 3)
     V = np.asarray(read_internal(os.path.join(case, time, "V")), dtype=float) * np.ones(len(C))
     values = values * np.ones(len(C))
-    out = np.full((nz, ny, nx), np.nan)
     span = np.rint(np.cbrt(V) / h).astype(int)            # finest cells per edge of each cell
     lo = np.rint((C - 0.5 * span[:, None] * h - np.asarray(origin)) / h).astype(int)
-    for k in np.unique(span):
-        sel = np.nonzero(span == k)[0]
-        for dz in range(k):
-            for dy in range(k):
-                for dx in range(k):
-                    out[lo[sel, 2] + dz, lo[sel, 1] + dy, lo[sel, 0] + dx] = values[sel]
+    return _fill_lattice((nz, ny, nx), lo.T, span, values)
+
+
+def _fill_lattice(shape, lo, span, values):
+    """An array of `shape` (nz, ny, nx) where each cell's value fills the span^3 finest cells from
+    its lowest one lo = (ix, iy, iz) (NaN where no cell is)."""
+    out = np.full(shape, np.nan)
+    for s in np.unique(span):
+        sel = np.nonzero(span == s)[0]
+        for dz in range(s):
+            for dy in range(s):
+                for dx in range(s):
+                    out[lo[2][sel] + dz, lo[1][sel] + dy, lo[0][sel] + dx] = values[sel]
     return out
 
 
@@ -411,14 +417,7 @@ def graded_lattice_field(case, time, name, base_faces, levels):
     span = k >> level                                      # finest cells per edge of each cell
     lo = [i * k + np.floor((C[:, d] - f[i]) / w * (1 << level)).astype(int) * span
           for d, (f, i, w) in enumerate(zip(base_faces, base, widths))]
-    out = np.full([n * k for n in n_base[::-1]], np.nan)
-    for s in np.unique(span):
-        sel = np.nonzero(span == s)[0]
-        for dz in range(s):
-            for dy in range(s):
-                for dx in range(s):
-                    out[lo[2][sel] + dz, lo[1][sel] + dy, lo[0][sel] + dx] = values[sel]
-    return out
+    return _fill_lattice([n * k for n in n_base[::-1]], lo, span, values)
 
 
 def refinement_ledger(case):
