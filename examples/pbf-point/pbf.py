@@ -470,10 +470,28 @@ def grains(case, cfg):
             "trajectory_frames": len(frames), "trajectory_end_s": frames[-1][0]}
 
 
+def isotherm_extent(T, molten, axis, h):
+    """The longest extent along AXIS of molten metal over the lattice's lines, each end where T
+    crosses T_MELT between the last molten cell's centre and the next cell's (linear), or at the
+    last cell's face when the line ends molten or its neighbour is not colder."""
+    Tl, ml = np.moveaxis(T, axis, -1), np.moveaxis(molten, axis, -1)
+    best = 0.0
+    for line in np.argwhere(ml.any(axis=-1)):
+        t, cells = Tl[tuple(line)], np.nonzero(ml[tuple(line)])[0]
+        lo, hi = cells.min(), cells.max()
+        x0 = (lo - 0.5 + (T_MELT - t[lo - 1]) / (t[lo] - t[lo - 1])) * h if lo > 0 and t[lo - 1] < T_MELT \
+            else lo * h
+        x1 = (hi + 0.5 + (t[hi] - T_MELT) / (t[hi] - t[hi + 1])) * h if hi < len(t) - 1 and t[hi + 1] < T_MELT \
+            else (hi + 1) * h
+        best = max(best, x1 - x0)
+    return best
+
+
 def melt_pool(case, cfg):
     """From the written fields: melt pool depth (deepest point below the initial substrate
     surface y = SUB of metal with T >= T_MELT, interpolated along the column), width
-    (extent across the track, z, of molten metal), length (x), and the keyhole depth (SUB minus
+    (extent across the track, z, of molten metal) and length (x), both interpolated to the T_MELT
+    crossings along their lines as the depth is, and the keyhole depth (SUB minus
     the lowest metal surface height within rw/2 of the beam axis), each the maximum over the
     written times with its time."""
     nx, ny, nz = ncells(cfg)
@@ -506,14 +524,9 @@ def melt_pool(case, cfg):
                 y = yc[j - 1] + (T_MELT - T[k, j - 1, i]) / (T[k, j, i] - T[k, j - 1, i]) * h
             depth = max(depth, sub - y)
             depth_x[i] = max(depth_x[i], sub - y)
-        # width (z) and length (x) of the molten region, cell-face extents
-        if molten.any():
-            ks = np.nonzero(molten.any(axis=(1, 2)))[0]
-            is_ = np.nonzero(molten.any(axis=(0, 1)))[0]
-            width = (ks.max() - ks.min() + 1) * h
-            length = (is_.max() - is_.min() + 1) * h
-        else:
-            width = length = 0.0
+        # width (z) and length (x) of the molten region, to the T_MELT crossings
+        width = isotherm_extent(T, molten, 0, h)
+        length = isotherm_extent(T, molten, 2, h)
         # keyhole: metal surface height in the columns near the beam axis (first alpha < 0.5
         # going up from the bottom, interpolated)
         xb, zb = beam_xz(cfg, t)

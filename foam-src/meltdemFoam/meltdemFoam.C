@@ -104,6 +104,9 @@ int main(int argc, char *argv[])
         #include "setInitialDeltaT.H"
     }
 
+    // a fixed step over the capillary limit is said once (capillaryDeltaT.H)
+    bool capillaryLimitExceeded = false;
+
     Foam::meltdem::caseCheckpoint checkpoint(runTime);
 
     Info<< "\nStarting time loop\n" << endl;
@@ -124,6 +127,7 @@ int main(int argc, char *argv[])
             #include "CourantNo.H"
             #include "alphaCourantNo.H"
             #include "setDeltaT.H"
+            #include "capillaryDeltaT.H"
         }
 
         #include "refineMesh.H"

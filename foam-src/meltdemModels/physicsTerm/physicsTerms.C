@@ -76,7 +76,8 @@ Foam::tmp<Foam::surfaceScalarField> Foam::meltdem::physicsTerms::surfaceForce
 (
     const volScalarField& alpha1,
     const immiscibleIncompressibleTwoPhaseMixture& mixture,
-    const volScalarField& T
+    const volScalarField& T,
+    const volScalarField& liquidFraction
 ) const
 {
     tmp<volScalarField> pressure;
@@ -91,11 +92,31 @@ Foam::tmp<Foam::surfaceScalarField> Foam::meltdem::physicsTerms::surfaceForce
     {
         tmp<surfaceScalarField> f
         (
-            t.surfaceForce(alpha1, mixture, T, pressure.valid() ? &pressure() : nullptr)
+            t.surfaceForce
+            (
+                alpha1, mixture, T, liquidFraction,
+                pressure.valid() ? &pressure() : nullptr
+            )
         );
         if (f.valid()) return f;
     }
     return mixture.surfaceTensionForce();
+}
+
+
+Foam::scalar Foam::meltdem::physicsTerms::maxDeltaT
+(
+    const volScalarField& alpha1,
+    const volScalarField& T,
+    const scalar rhoMean
+) const
+{
+    scalar dt = GREAT;
+    for (const physicsTerm& t : terms_)
+    {
+        dt = min(dt, t.maxDeltaT(alpha1, T, rhoMean));
+    }
+    return dt;
 }
 
 

@@ -8,6 +8,7 @@
 #include "surfaceInterpolate.H"
 #include "fvcDiv.H"
 #include "fvcAverage.H"
+#include "mathematicalConstants.H"
 
 #include <cmath>
 
@@ -137,6 +138,7 @@ Foam::meltdem::surfaceForces::surfaceForce
     const volScalarField& alpha,
     const volScalarField& K,
     const volScalarField& T,
+    const volScalarField& liquidFraction,
     const volScalarField* pRecoil
 ) const
 {
@@ -152,10 +154,11 @@ Foam::meltdem::surfaceForces::surfaceForce
     if (pRecoil)
     {
         return
-            fvc::interpolate(sigma(T)*Kused + *pRecoil)*fvc::snGrad(alpha);
+            fvc::interpolate(liquidFraction*sigma(T)*Kused + *pRecoil)
+           *fvc::snGrad(alpha);
     }
 
-    return fvc::interpolate(sigma(T)*Kused)*fvc::snGrad(alpha);
+    return fvc::interpolate(liquidFraction*sigma(T)*Kused)*fvc::snGrad(alpha);
 }
 
 
@@ -163,7 +166,8 @@ Foam::tmp<Foam::volVectorField>
 Foam::meltdem::surfaceForces::marangoniForce
 (
     const volScalarField& alpha,
-    const volScalarField& T
+    const volScalarField& T,
+    const volScalarField& liquidFraction
 ) const
 {
     const volVectorField gradAlpha(fvc::grad(alpha, "nHat"));
@@ -173,7 +177,7 @@ Foam::meltdem::surfaceForces::marangoniForce
 
     tmp<volVectorField> tforce
     (
-        (gradSigma - nHat*(nHat & gradSigma))*magGradAlpha
+        liquidFraction*(gradSigma - nHat*(nHat & gradSigma))*magGradAlpha
     );
     tforce.ref().rename("marangoniForce");
     return tforce;
@@ -181,3 +185,33 @@ Foam::meltdem::surfaceForces::marangoniForce
 
 
 // ************************************************************************* //
+
+
+Foam::scalar Foam::meltdem::surfaceForces::capillaryDeltaT
+(
+    const volScalarField& alpha,
+    const volScalarField& T,
+    const scalar rhoMean
+) const
+{
+    const labelUList& own = mesh_.owner();
+    const labelUList& nei = mesh_.neighbour();
+    const vectorField& C = mesh_.C();
+    const auto crossed = [&](const label celli)
+    {
+        return alpha[celli] > 0.01 && alpha[celli] < 0.99;
+    };
+    scalar dt2 = GREAT;
+    forAll(nei, facei)
+    {
+        const label a = own[facei], b = nei[facei];
+        if (crossed(a) || crossed(b))
+        {
+            const scalar h = mag(C[b] - C[a]);
+            const scalar s = max(sigma(T[a]), sigma(T[b]));
+            dt2 = min(dt2, rhoMean*h*h*h/(constant::mathematical::twoPi*s));
+        }
+    }
+    reduce(dt2, minOp<scalar>());
+    return dt2 < GREAT ? Foam::sqrt(dt2) : GREAT;
+}

@@ -9,7 +9,7 @@ import numpy as np
 from .. import paths
 from ..case import foam as fc
 
-HOOKS = ("heatSource", "linearisedHeatLoss", "surfacePressure", "surfaceForce", "addMomentum")
+HOOKS = ("heatSource", "linearisedHeatLoss", "surfacePressure", "surfaceForce", "maxDeltaT", "addMomentum")
 OUTPUTS = {"termHeatSource": False, "termQ0": False, "termDqdT": False, "termSurfacePressure": False,
            "termSurfaceForce": True, "termMomentum": True, "magGradAlpha": False}
 DIMS = {"alpha.metal": "[0 0 0 0 0 0 0]", "liquidFraction": "[0 0 0 0 0 0 0]", "T": "[0 0 0 1 0 0 0]",
@@ -47,6 +47,9 @@ def evaluate(case, term, grid, fields, properties, g=None, rho1=1.0, transport=N
         if os.path.exists(p):
             v = np.asarray(fc.read_internal(p), dtype=float)
             outputs[name] = np.broadcast_to(v, (n, 3) if vector else (n,)).copy()
+    limit = re.search(r"^maxDeltaT (\S+)$", log, re.M)
+    if limit:
+        outputs["maxDeltaT"] = float(limit.group(1))
     return hooks, outputs
 
 

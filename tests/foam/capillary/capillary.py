@@ -3,9 +3,13 @@
 gravity) relaxes to a circle; the pressure jump inside - outside must be the 2D Laplace value
 sigma(T)/R (<= 5 %), R from the metal area. T is uniform at 2000 K so that sigma(T) = 1.5 N/m
 differs from transportProperties' sigma (1.8): a solver that used the latter would miss by 20 %.
-Also: circularity of the alpha = 0.5 contour and metal volume conservation (closed box).
+Also: circularity of the alpha = 0.5 contour and metal volume conservation (closed box). The step
+is the solver's own: adjustTimeStep under maxCapillaryNo 0.5 of the capillary limit it states each
+step (Brackbill1992, sqrt(rho_mean dx^3 / (2 pi sigma))), checked against that closed form and met
+by every step; a fixed step above the limit runs on with one warning (not a stop).
 """
 import os
+import re
 import shutil
 import sys
 import tempfile
@@ -31,9 +35,10 @@ case = os.path.join(work, "drop")
 g = fc.Grid2D(L, L, n, n, x0=-L / 2, y0=-L / 2)
 g.block_mesh(case)
 rho_avg = 0.5 * (M["rho"] + G["rho"])
-dt_cap = 0.5 * np.sqrt(rho_avg * g.dx ** 3 / (2 * np.pi * sigma))   # Brackbill's capillary limit
-fc.control_dict(case, "meltdemFoam", t_end, 1e-9, t_end / 2, max_co=0.2, max_alpha_co=0.2,
-                max_dt=dt_cap)
+dt_cap = np.sqrt(rho_avg * g.dx ** 3 / (2 * np.pi * sigma))   # Brackbill's capillary limit
+MAX_CAPILLARY_NO = 0.5
+fc.control_dict(case, "meltdemFoam", t_end, 1e-9, t_end / 2, max_co=0.2, max_alpha_co=0.2, max_dt=1.0,
+                extra=f"maxCapillaryNo {MAX_CAPILLARY_NO!r};")
 fc.fv_schemes(case)
 fc.fv_solution(case, p_ref_cell=0)
 fc.transport(case, M["rho"], M["mu"] / M["rho"], G["rho"], G["mu"] / G["rho"], M["sigma0"])
@@ -69,6 +74,32 @@ ok &= check_at_most(TEST, "circularity (r_max - r_min)/R of the alpha=0.5 contou
                     (rr.max() - rr.min()) / R, 0.05)
 ok &= check_at_most(TEST, "metal volume drift |V(t)-V(0)|/V(0) (closed box)",
                     abs(alpha.sum() - alpha0.sum()) / alpha0.sum(), 1e-6)
+# the step the solver took: under maxCapillaryNo times the limit it stated, the limit the closed form
+STEP_LINE = r"^Capillary step limit = (\S+) s, deltaT/limit = (\S+)$"
+steps = [(float(a), float(b)) for a, b in re.findall(STEP_LINE, open(os.path.join(case, "log.solver")).read(), re.M)]
+ok &= check_relative(TEST, "capillary step limit the solver states [s] vs sqrt(rho_mean dx^3 / (2 pi sigma(T)))",
+                     max(s[0] for s in steps), dt_cap, 1e-3)
+# (adjustableRunTime may stretch a step by at most 1 % to land on a write time, as it does under maxCo)
+ok &= check_at_most(TEST, f"largest deltaT / capillary limit over the {len(steps)} steps (maxCapillaryNo "
+                    f"{MAX_CAPILLARY_NO:g}, x 1.01 write-time stretch)", max(s[1] for s in steps),
+                    MAX_CAPILLARY_NO * 1.01)
+# a fixed step of twice the limit: said once, and the run goes on to its end
+fixed = os.path.join(work, "fixed")
+results = set(fc.time_dirs(case)) - {"0"}
+
+
+def not_copied(d, names):
+    return [n for n in names if n.startswith("log.") or (d == case and n in results)]
+
+
+shutil.copytree(case, fixed, ignore=not_copied)
+fc.control_dict(fixed, "meltdemFoam", 10 * 2 * dt_cap, 2 * dt_cap, 10 * 2 * dt_cap, max_dt=1.0, adjustable=False)
+fc.run([fc.solver()], fixed, "log.solver")
+log = open(os.path.join(fixed, "log.solver")).read()
+ok &= check_relative(TEST, "fixed step 2x the capillary limit: time reached [s] vs end time (runs on)",
+                     float(fc.time_dirs(fixed)[-1]), 20 * dt_cap, 1e-6)
+ok &= check_relative(TEST, "fixed step 2x the capillary limit: warnings naming the limit (once per run)",
+                     log.count("exceeds maxCapillaryNo"), 1, 0)
 if ok:
     shutil.rmtree(work)
 else:

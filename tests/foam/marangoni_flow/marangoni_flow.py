@@ -6,6 +6,8 @@ start-up of two semi-infinite fluids under a constant surface shear tau = |dsigm
     u_s(t) = 2 tau sqrt(t/pi) / (sqrt(rho_l mu_l) + sqrt(rho_g mu_g)),
 valid while both diffusion lengths stay inside their layers (here t <= 10 us:
 sqrt(nu_l t) = 2.8 um, sqrt(nu_g t) = 28 um) and away from the end walls (middle half).
+The same layer solid (solidus above the range, Darcy on) must stay at rest, gas included: the
+surface forces act on liquid metal only (weighted by its liquid fraction).
 """
 import os
 import shutil
@@ -30,7 +32,7 @@ work = tempfile.mkdtemp(prefix="marangoni_flow.")
 ny = int(round((h + H) / dy))
 
 
-def make_and_run(case, marangoni):
+def make_and_run(case, marangoni, solid=False):
     g = fc.Grid2D(L, h + H, nx, ny, dz=4e-6)
     g.block_mesh(case, {"left": ("left", "wall"), "right": ("right", "wall")})
     fc.control_dict(case, "meltdemFoam", t_end, 1e-9, t_end / 4, max_co=0.2, max_alpha_co=0.2, max_dt=5e-8)
@@ -40,9 +42,12 @@ def make_and_run(case, marangoni):
     fc.gravity(case)
     # marangoni needs the energy equation: the linear T profile is its steady solution (fixed
     # ends, adiabatic top and bottom); solidus/liquidus below the range keep the layer liquid
-    fc.meltdem_properties(case, physics={"energy": "on", "marangoni": marangoni},
-                          extra=f"metal {{ cp {M['cp']!r}; k {M['k']!r}; L 0; Tsolidus 1000; Tliquidus 1100; }}\n"
-                                f"gas {{ cp {G['cp']!r}; k {G['k']!r}; }}\n")
+    melt = "Tsolidus 2000; Tliquidus 2100;" if solid else "Tsolidus 1000; Tliquidus 1100;"
+    physics = {"energy": "on", "marangoni": marangoni, "darcy": "on" if solid else "off"}
+    fc.meltdem_properties(case, physics=physics,
+                          extra=f"metal {{ cp {M['cp']!r}; k {M['k']!r}; L 0; {melt} }}\n"
+                                f"gas {{ cp {G['cp']!r}; k {G['k']!r}; }}\n"
+                                + ("darcy { C 1e12; b 1e-3; }\n" if solid else ""))
     sides = {"left": "type zeroGradient;", "right": "type zeroGradient;", "walls": "type zeroGradient;"}
     fc.field(case, "alpha.metal", "[0 0 0 0 0 0 0]", (g.y < h).astype(float), sides)
     # linear in x with fixed end values: also the steady conduction solution if energy is solved
@@ -80,6 +85,13 @@ make_and_run(off, "off")
 U = fc.read_internal(os.path.join(off, fc.time_dirs(off)[-1], "U")).reshape(ny, nx, 3)
 ok &= check_at_most(TEST, "marangoni off: max surface |u_x| / reference", np.abs(U[j - 1:j + 1, mid, 0]).max() / ref,
                     0.01)
+# a solid layer (solidus 2000 K above the 1600-1800 K surface, Darcy holding the metal): no
+# Marangoni or capillary force on it, so neither the metal nor the gas over it moves
+solid = os.path.join(work, "solid")
+make_and_run(solid, "on", solid=True)
+U = np.broadcast_to(fc.read_internal(os.path.join(solid, fc.time_dirs(solid)[-1], "U")), (ny * nx, 3))
+ok &= check_at_most(TEST, "solid layer, marangoni on: max |u| anywhere (gas included) / liquid surface reference",
+                    float(np.abs(U).max()) / ref, 0.01)
 if ok:
     shutil.rmtree(work)
 else:

@@ -89,7 +89,15 @@ int main(int argc, char *argv[])
         mesh
     );
 
-    volVectorField F(forces.marangoniForce(alpha, T));
+    // all liquid: the forces at full strength
+    const volScalarField liquid
+    (
+        IOobject("liquid", runTime.timeName(), mesh),
+        mesh,
+        dimensionedScalar("one", dimless, 1.0)
+    );
+
+    volVectorField F(forces.marangoniForce(alpha, T, liquid));
 
     // Interface normal as the force uses it, to measure what is not tangential
     const volVectorField gradAlpha(fvc::grad(alpha, "nHat"));
@@ -134,7 +142,7 @@ int main(int argc, char *argv[])
     (
         fvc::reconstruct
         (
-            forces.surfaceForce(alpha, K, T)*mesh.magSf()
+            forces.surfaceForce(alpha, K, T, liquid)*mesh.magSf()
         )
     );
     const vector netCSF(gSum(fCSF.primitiveField()*mesh.V()));
@@ -170,8 +178,8 @@ int main(int argc, char *argv[])
         (
             fvc::reconstruct
             (
-                forces.surfaceForce(alpha, K0, T, &pRecoil)*mesh.magSf()
-              - forces.surfaceForce(alpha, K0, T)*mesh.magSf()
+                forces.surfaceForce(alpha, K0, T, liquid, &pRecoil)*mesh.magSf()
+              - forces.surfaceForce(alpha, K0, T, liquid)*mesh.magSf()
             )
         );
         const vector netR(gSum(fR.primitiveField()*mesh.V()));

@@ -19,7 +19,12 @@ Description
                            matrix M holding the term alone     [N/m3]
       magGradAlpha         |grad alpha| as the models take it  [1/m]
 
-    Fields read: alpha.metal, T, and where present liquidFraction, U; gravity
+    and prints "maxDeltaT <seconds>" where the term limits the step
+    (maxDeltaT(alpha, T, rhoMean), rhoMean the mixture's mean density, or
+    rho1/2 without transportProperties).
+
+    Fields read: alpha.metal, T, and where present liquidFraction (else 1:
+    all liquid), U; gravity
     from constant/g (zero without it); the metal density from -rho1.
     surfaceForce needs constant/transportProperties (the two-phase mixture).
     Prints "hook <name> yes|no" for each hook.
@@ -39,18 +44,15 @@ using namespace Foam;
 namespace
 {
 
-tmp<volScalarField> readOrZero
+tmp<volScalarField> readOrUniform
 (
     const word& name,
     const fvMesh& mesh,
-    const dimensionSet& dims
+    const dimensionedScalar& value
 )
 {
     IOobject io(name, mesh.time().timeName(), mesh, IOobject::READ_IF_PRESENT);
-    return tmp<volScalarField>::New
-    (
-        io, mesh, dimensionedScalar(name, dims, Zero)
-    );
+    return tmp<volScalarField>::New(io, mesh, value);
 }
 
 void say(const word& hook, const bool acts)
@@ -94,7 +96,7 @@ int main(int argc, char *argv[])
     );
     const volScalarField liquidFraction
     (
-        readOrZero("liquidFraction", mesh, dimless)
+        readOrUniform("liquidFraction", mesh, dimensionedScalar("one", dimless, 1.0))
     );
     volVectorField U
     (
@@ -182,13 +184,24 @@ int main(int argc, char *argv[])
 
     if (mixture)
     {
-        tmp<surfaceScalarField> f(term->surfaceForce(alpha1, mixture(), T, nullptr));
+        tmp<surfaceScalarField> f(term->surfaceForce(alpha1, mixture(), T, liquidFraction, nullptr));
         say("surfaceForce", f.valid());
         if (f.valid())
         {
             volVectorField out("termSurfaceForce", fvc::reconstruct(f()*mesh.magSf()));
             out.write();
         }
+    }
+
+    const scalar rhoMean =
+        mixture
+      ? 0.5*(mixture->rho1().value() + mixture->rho2().value())
+      : 0.5*rho1.value();
+    const scalar dtLimit = term->maxDeltaT(alpha1, T, rhoMean);
+    say("maxDeltaT", dtLimit < GREAT);
+    if (dtLimit < GREAT)
+    {
+        Info<< "maxDeltaT " << dtLimit << nl;
     }
 
     fvVectorMatrix M(U, dimForce);

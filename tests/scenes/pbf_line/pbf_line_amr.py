@@ -4,8 +4,8 @@ metal within 300 K of melting, the beam's footprint and its path ahead, the grai
 against the uniform mesh of its finest cells, on one poured bed.
 
 Checks: melt-pool depth, width and length (their maxima over the written times) on the refined
-mesh vs the uniform one (the issue's 2 %; width and length are counted in 10 um cells, so 2 % means
-equal); on the refined run the exact budgets of the uniform CI test (laser energy 1e-6, grain mass
+mesh vs the uniform one (the issue's 2 %; all three read where T crosses the melting point between
+cell centres); on the refined run the exact budgets of the uniform CI test (laser energy 1e-6, grain mass
 1e-12, ledger balances) and every mesh change conserving metal and enthalpy (1e-12). Reports both
 runs' cells and solver CPU: on this 280 x 160 um floor the refined region holds every cell, so the
 refined run is not cheaper (bench/amr.md has the speed on wider floors).

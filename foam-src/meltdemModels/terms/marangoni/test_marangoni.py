@@ -4,7 +4,8 @@
 Marangoni force (I - n n) & grad(sigma(T)) |grad alpha| of Fuchs2022 eq. 8: on every interior column
 its integral across the surface is dsigma/dT dT/dx exactly (the Gauss gradient of alpha
 telescopes to 1), pointing from hot to cold for dsigma/dT < 0, with no normal component; it acts
-through addMomentum only."""
+through addMomentum only. The force acts on liquid metal only: with the liquid fraction f_l falling
+from 1 to 0 along the surface, each column's integral is f_l dsigma/dT dT/dx, and 0 where solid."""
 import os
 import sys
 import tempfile
@@ -37,4 +38,16 @@ ok &= check_at_most(TEST, f"column integral of F_x [N/m2] vs dsigma/dT dT/dx = {
                     float(np.max(np.abs(column - expected)) / abs(expected)), 1e-9)
 ok &= check_at_most(TEST, "normal (y) share of the force, max |F_y| / max |F_x|",
                     float(np.max(np.abs(F[:, 1])) / np.max(np.abs(F[:, 0]))), 1e-9)
+
+# liquid fraction 1 in the left quarter, 0 in the right half, linear between (a mushy surface)
+col_fl = np.clip((0.75e-3 - grid.x[:NX]) / 0.5e-3, 0.0, 1.0)
+_, out = terms.evaluate(os.path.join(work, "mushy"), "marangoni", grid,
+                        {"alpha.metal": alpha, "T": T, "liquidFraction": np.tile(col_fl, NY)}, props)
+column = out["termMomentum"][:, 0].reshape(NY, NX)[:, 1:-1].sum(axis=0) * grid.dy
+weighted = col_fl[1:-1] * expected
+ok &= check_at_most(TEST, "column integral of F_x vs f_l dsigma/dT dT/dx on a mushy surface (f_l 1 -> 0), "
+                    "max deviation / |dsigma/dT dT/dx|", float(np.max(np.abs(column - weighted)) / abs(expected)), 1e-9)
+solid = col_fl[1:-1] == 0
+ok &= check_at_most(TEST, f"largest |column integral| over the {int(solid.sum())} solid columns / |dsigma/dT dT/dx|",
+                    float(np.max(np.abs(column[solid])) / abs(expected)), 1e-12)
 sys.exit(fc.finish(ok, work))

@@ -37,11 +37,24 @@ Foam::tmp<Foam::surfaceScalarField> Foam::meltdem::surfaceTensionTerm::surfaceFo
     const volScalarField& alpha1,
     const immiscibleIncompressibleTwoPhaseMixture& mixture,
     const volScalarField& T,
+    const volScalarField& liquidFraction,
     const volScalarField* pressure
 ) const
 {
     return forces_.surfaceForce
     (
-        alpha1, volScalarField("K", -fvc::div(mixture.nHatf())), T, pressure
+        alpha1, volScalarField("K", -fvc::div(mixture.nHatf())), T,
+        liquidFraction, pressure
     );
+}
+
+
+Foam::scalar Foam::meltdem::surfaceTensionTerm::maxDeltaT
+(
+    const volScalarField& alpha1,
+    const volScalarField& T,
+    const scalar rhoMean
+) const
+{
+    return forces_.capillaryDeltaT(alpha1, T, rhoMean);
 }
