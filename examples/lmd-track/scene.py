@@ -384,7 +384,9 @@ def build(a):
     fc.meltdem_properties(case, physics=dict(energy="on", darcy="on", surfaceTension="on",
                                              marangoni="on" if a.marangoni else "off",
                                              laser="on", particles="on" if a.particles else "off"),
-                          surface={k: METAL[k] for k in ("sigma0", "dSigmadT", "Tsigma0", "sigmaMin")},
+                          # Marangoni density-scaled: on the metal side, so the argon moves by the melt's drag
+                          surface=dict({k: METAL[k] for k in ("sigma0", "dSigmadT", "Tsigma0", "sigmaMin")},
+                                       **({"marangoniDensityScaled": 1} if a.marangoni else {})),
                           extra=f"""
 metal {{ cp {METAL['cp']!r}; k {METAL['k']!r}; L {METAL['L']!r}; Tsolidus {METAL['Tsolidus']!r}; Tliquidus {METAL['Tliquidus']!r}; }}
 gas {{ cp {ARGON['cp']!r}; k {ARGON['k']!r}; }}
@@ -687,8 +689,10 @@ def main(argv=None):
     ap.add_argument("--restitution", type=float, default=0.6)
     ap.add_argument("--distribution", default="centre",
                     help="particle->cell model (default centre: grains are smaller than the cells)")
-    ap.add_argument("--marangoni", action="store_true",
-                    help="Marangoni force on (off by default: meltdemFoam applies it on solid surfaces too)")
+    ap.add_argument("--marangoni", dest="marangoni", action="store_true", default=True,
+                    help="Marangoni force on, density-scaled (the default)")
+    ap.add_argument("--no-marangoni", dest="marangoni", action="store_false",
+                    help="Marangoni force off (the conduction-shaped pool of the earlier releases)")
     ap.add_argument("--laser-shadow", action="store_true",
                     help="grains in the beam absorb and shadow (off by default: negligible in LMD, thesis 4.1)")
     ap.add_argument("--cold-start", action="store_true",

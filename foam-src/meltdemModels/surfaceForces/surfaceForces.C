@@ -39,7 +39,8 @@ Foam::meltdem::surfaceForces::surfaceForces
     Tsigma0_("Tsigma0", dimTemperature, dict.get<scalar>("Tsigma0")),
     sigmaMin_("sigmaMin", dimSigma, dict.get<scalar>("sigmaMin")),
     deltaN_("deltaN", 1e-8/cbrt(average(mesh.V()))),
-    nSmooth_(dict.getOrDefault<label>("nSmooth", 0))
+    nSmooth_(dict.getOrDefault<label>("nSmooth", 0)),
+    marangoniDensityScaled_(dict.getOrDefault<bool>("marangoniDensityScaled", false))
 {
     if (nSmooth_ < 0)
     {
@@ -167,7 +168,9 @@ Foam::meltdem::surfaceForces::marangoniForce
 (
     const volScalarField& alpha,
     const volScalarField& T,
-    const volScalarField& liquidFraction
+    const volScalarField& liquidFraction,
+    const dimensionedScalar& rho1,
+    const dimensionedScalar& rho2
 ) const
 {
     const volVectorField gradAlpha(fvc::grad(alpha, "nHat"));
@@ -179,12 +182,15 @@ Foam::meltdem::surfaceForces::marangoniForce
     (
         liquidFraction*(gradSigma - nHat*(nHat & gradSigma))*magGradAlpha
     );
+    if (marangoniDensityScaled_)
+    {
+        const volScalarField alphaBounded(min(max(alpha, scalar(0)), scalar(1)));
+        tforce.ref() *= 2*(alphaBounded*rho1 + (1 - alphaBounded)*rho2)/(rho1 + rho2);
+    }
     tforce.ref().rename("marangoniForce");
     return tforce;
 }
 
-
-// ************************************************************************* //
 
 
 Foam::scalar Foam::meltdem::surfaceForces::capillaryDeltaT
@@ -215,3 +221,5 @@ Foam::scalar Foam::meltdem::surfaceForces::capillaryDeltaT
     reduce(dt2, minOp<scalar>());
     return dt2 < GREAT ? Foam::sqrt(dt2) : GREAT;
 }
+
+// ************************************************************************* //

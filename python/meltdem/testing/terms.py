@@ -16,7 +16,7 @@ DIMS = {"alpha.metal": "[0 0 0 0 0 0 0]", "liquidFraction": "[0 0 0 0 0 0 0]", "
         "U": "[0 1 -1 0 0 0 0]"}
 
 
-def evaluate(case, term, grid, fields, properties, g=None, rho1=1.0, transport=None):
+def evaluate(case, term, grid, fields, properties, g=None, rho1=1.0, transport=None, rho2=0.0):
     """Write the case, run meltdemTermCheck -term TERM, return (hooks, outputs): hooks maps each
     hook to whether the term acts through it, outputs the fields it wrote (cell arrays, vectors
     as (n, 3)). fields: name -> cell values (alpha.metal and T required; U as (n, 3));
@@ -37,7 +37,7 @@ def evaluate(case, term, grid, fields, properties, g=None, rho1=1.0, transport=N
         fc.field(case, name, DIMS[name], values, {"walls": "type zeroGradient;"} if not vector
                  else {"walls": "type noSlip;"}, vector=vector)
     fc.run(["blockMesh"], case, "log.blockMesh")
-    fc.run([paths.binary("meltdemTermCheck"), "-term", term, "-rho1", repr(rho1)], case, "log.termCheck")
+    fc.run([paths.binary("meltdemTermCheck"), "-term", term, "-rho1", repr(rho1), "-rho2", repr(rho2)], case, "log.termCheck")
     log = open(os.path.join(case, "log.termCheck")).read()
     hooks = {h: v == "yes" for h, v in re.findall(r"^hook (\w+) (yes|no)$", log, re.M)}
     outputs = {}

@@ -7,7 +7,9 @@ start-up of two semi-infinite fluids under a constant surface shear tau = |dsigm
 valid while both diffusion lengths stay inside their layers (here t <= 10 us:
 sqrt(nu_l t) = 2.8 um, sqrt(nu_g t) = 28 um) and away from the end walls (middle half).
 The same layer solid (solidus above the range, Darcy on) must stay at rest, gas included: the
-surface forces act on liquid metal only (weighted by its liquid fraction).
+surface forces act on liquid metal only (weighted by its liquid fraction). With
+marangoniDensityScaled the force sits on the metal side of the interface, half a cell below it here:
+first order in the cell size (an expected miss at these 1 um cells, shown).
 """
 import os
 import shutil
@@ -32,7 +34,7 @@ work = tempfile.mkdtemp(prefix="marangoni_flow.")
 ny = int(round((h + H) / dy))
 
 
-def make_and_run(case, marangoni, solid=False):
+def make_and_run(case, marangoni, solid=False, density_scaled=False):
     g = fc.Grid2D(L, h + H, nx, ny, dz=4e-6)
     g.block_mesh(case, {"left": ("left", "wall"), "right": ("right", "wall")})
     fc.control_dict(case, "meltdemFoam", t_end, 1e-9, t_end / 4, max_co=0.2, max_alpha_co=0.2, max_dt=5e-8)
@@ -44,7 +46,7 @@ def make_and_run(case, marangoni, solid=False):
     # ends, adiabatic top and bottom); solidus/liquidus below the range keep the layer liquid
     melt = "Tsolidus 2000; Tliquidus 2100;" if solid else "Tsolidus 1000; Tliquidus 1100;"
     physics = {"energy": "on", "marangoni": marangoni, "darcy": "on" if solid else "off"}
-    fc.meltdem_properties(case, physics=physics,
+    fc.meltdem_properties(case, physics=physics, surface={"marangoniDensityScaled": 1} if density_scaled else None,
                           extra=f"metal {{ cp {M['cp']!r}; k {M['k']!r}; L 0; {melt} }}\n"
                                 f"gas {{ cp {G['cp']!r}; k {G['k']!r}; }}\n"
                                 + ("darcy { C 1e12; b 1e-3; }\n" if solid else ""))
@@ -92,6 +94,14 @@ make_and_run(solid, "on", solid=True)
 U = np.broadcast_to(fc.read_internal(os.path.join(solid, fc.time_dirs(solid)[-1], "U")), (ny * nx, 3))
 ok &= check_at_most(TEST, "solid layer, marangoni on: max |u| anywhere (gas included) / liquid surface reference",
                     float(np.abs(U).max()) / ref, 0.01)
+# density-scaled: the same start-up, the force on the metal side of the interface
+scaled = os.path.join(work, "scaled")
+make_and_run(scaled, "on", density_scaled=True)
+U = fc.read_internal(os.path.join(scaled, fc.time_dirs(scaled)[-1], "U")).reshape(ny, nx, 3)
+ok &= check_relative(TEST, f"marangoniDensityScaled: surface velocity at t={t:g} s [m/s] vs the two-fluid start-up",
+                     float(np.mean(0.5 * (U[j - 1, mid, 0] + U[j, mid, 0]))), ref, 0.10,
+                     xfail="density scaling puts the force half a cell below a sharp interface: first order in the "
+                     "cell size (-15.5 % at these 1 um cells, -8.4 % at 0.5 um)")
 if ok:
     shutil.rmtree(work)
 else:

@@ -97,7 +97,9 @@ int main(int argc, char *argv[])
         dimensionedScalar("one", dimless, 1.0)
     );
 
-    volVectorField F(forces.marangoniForce(alpha, T, liquid));
+    // one density: the density scaling is 1
+    const dimensionedScalar rho("rho", dimDensity, 1);
+    volVectorField F(forces.marangoniForce(alpha, T, liquid, rho, rho));
 
     // Interface normal as the force uses it, to measure what is not tangential
     const volVectorField gradAlpha(fvc::grad(alpha, "nHat"));

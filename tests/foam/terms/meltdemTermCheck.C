@@ -25,12 +25,13 @@ Description
 
     Fields read: alpha.metal, T, and where present liquidFraction (else 1:
     all liquid), U; gravity
-    from constant/g (zero without it); the metal density from -rho1.
+    from constant/g (zero without it); the metal and gas densities from -rho1
+    and -rho2.
     surfaceForce needs constant/transportProperties (the two-phase mixture).
     Prints "hook <name> yes|no" for each hook.
 
 Usage
-    meltdemTermCheck -term NAME [-rho1 value]
+    meltdemTermCheck -term NAME [-rho1 value] [-rho2 value]
 
 \*---------------------------------------------------------------------------*/
 
@@ -69,6 +70,7 @@ int main(int argc, char *argv[])
     argList::noParallel();
     argList::addOption("term", "name", "the physics term (meltdemFoam -listTerms)");
     argList::addOption("rho1", "value", "metal density [kg/m3] (default 1)");
+    argList::addOption("rho2", "value", "gas density [kg/m3] (default 0)");
 
     #include "setRootCase.H"
     #include "createTime.H"
@@ -134,6 +136,10 @@ int main(int argc, char *argv[])
     const dimensionedScalar rho1
     (
         "rho1", dimDensity, args.getOrDefault<scalar>("rho1", 1)
+    );
+    const dimensionedScalar rho2
+    (
+        "rho2", dimDensity, args.getOrDefault<scalar>("rho2", 0)
     );
 
     autoPtr<meltdem::physicsTerm> term
@@ -205,7 +211,7 @@ int main(int argc, char *argv[])
     }
 
     fvVectorMatrix M(U, dimForce);
-    term->addMomentum(M, {alpha1, T, liquidFraction, rho1, g});
+    term->addMomentum(M, {alpha1, T, liquidFraction, rho1, rho2, g});
     const bool pushes = M.hasDiag() || M.hasUpper() || M.hasLower() || gMax(mag(M.source())) > 0;
     say("addMomentum", pushes);
     if (pushes)

@@ -27,5 +27,5 @@ Foam::meltdem::marangoniTerm::marangoniTerm(const fvMesh& mesh, const dictionary
 
 void Foam::meltdem::marangoniTerm::addMomentum(fvVectorMatrix& UEqn, const solverFields& f) const
 {
-    UEqn -= forces_.marangoniForce(f.alpha1, f.T, f.liquidFraction);
+    UEqn -= forces_.marangoniForce(f.alpha1, f.T, f.liquidFraction, f.rho1, f.rho2);
 }
