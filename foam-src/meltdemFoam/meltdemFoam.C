@@ -132,6 +132,12 @@ int main(int argc, char *argv[])
 
         #include "refineMesh.H"
 
+        if (terms.laser())
+        {
+            // eta(T) of this step, for the grains and the continuum alike
+            terms.laser()->updateAbsorptivity(alpha1, T);
+        }
+
         if (particles.valid())
         {
             // LAMMPS advances first and fixes the step to the time it advanced

@@ -17,6 +17,12 @@ Foam::meltdem::laserHeatSource::laserHeatSource
     mesh_(mesh),
     power_(dict.get<scalar>("power")),
     absorptivity_(dict.get<scalar>("absorptivity")),
+    linearAbsorptivity_(false),
+    absorptivity0_(absorptivity_),
+    dAbsorptivitydT_(0),
+    Tabsorptivity_(0),
+    absorptivityMin_(dict.getOrDefault<scalar>("absorptivityMin", 0)),
+    absorptivityMax_(dict.getOrDefault<scalar>("absorptivityMax", 1)),
     radius_(dict.get<scalar>("radius")),
     direction_(dict.getOrDefault<vector>("direction", vector(0, 0, -1))),
     tOn_(dict.getOrDefault<scalar>("tOn", 0)),
@@ -50,6 +56,36 @@ Foam::meltdem::laserHeatSource::laserHeatSource
     {
         FatalIOErrorInFunction(dict)
             << "absorptivity (" << absorptivity_ << ") must be in [0,1] in "
+            << dict.name() << exit(FatalIOError);
+    }
+    const word model(dict.getOrDefault<word>("absorptivityModel", "constant"));
+    if (model == "linear")
+    {
+        linearAbsorptivity_ = true;
+        dAbsorptivitydT_ = dict.get<scalar>("dAbsorptivitydT");
+        Tabsorptivity_ = dict.get<scalar>("Tabsorptivity");
+        if (!(Tabsorptivity_ > 0))
+        {
+            FatalIOErrorInFunction(dict)
+                << "Tabsorptivity (" << Tabsorptivity_ << ") must be an absolute"
+                << " temperature > 0 [K] in " << dict.name() << exit(FatalIOError);
+        }
+        if
+        (
+            !(absorptivityMin_ >= 0 && absorptivityMin_ <= absorptivityMax_
+           && absorptivityMax_ <= 1)
+        )
+        {
+            FatalIOErrorInFunction(dict)
+                << "absorptivityMin (" << absorptivityMin_ << ") and absorptivityMax ("
+                << absorptivityMax_ << ") must satisfy 0 <= min <= max <= 1 in "
+                << dict.name() << exit(FatalIOError);
+        }
+    }
+    else if (model != "constant")
+    {
+        FatalIOErrorInFunction(dict)
+            << "absorptivityModel '" << model << "' is not one of (constant linear) in "
             << dict.name() << exit(FatalIOError);
     }
     if (!(radius_ > 0))
@@ -403,6 +439,62 @@ Foam::tmp<Foam::volScalarField> Foam::meltdem::laserHeatSource::heatSource
     q.correctBoundaryConditions();
     absorbedPower_ = gSum(qi*mesh_.V());
     return tq;
+}
+
+
+Foam::scalar Foam::meltdem::laserHeatSource::absorptivity(const scalar T) const
+{
+    if (!linearAbsorptivity_)
+    {
+        return absorptivity0_;
+    }
+    return max
+    (
+        min(absorptivity0_ + dAbsorptivitydT_*(T - Tabsorptivity_), absorptivityMax_),
+        absorptivityMin_
+    );
+}
+
+
+void Foam::meltdem::laserHeatSource::updateAbsorptivity
+(
+    const volScalarField& alphaMetal,
+    const volScalarField& T
+)
+{
+    if (!linearAbsorptivity_)
+    {
+        return;
+    }
+    // the beam's shape on the metal side of the surface facing it, as heatSource
+    const volVectorField gradAlpha(fvc::grad(alphaMetal));
+    const point x0 = position(mesh_.time().value());
+    const vector& e = direction_;
+    const vectorField& C = mesh_.C();
+    const scalarField& V = mesh_.V();
+    scalar weight = 0, weightedT = 0;
+    forAll(C, celli)
+    {
+        const scalar facing = gradAlpha[celli] & e;
+        if (facing > 0)
+        {
+            vector d = C[celli] - x0;
+            d -= (d & e)*e;
+            const scalar w =
+                exp(-2*magSqr(d)/sqr(radius_))*facing
+               *max(min(alphaMetal[celli], scalar(1)), scalar(0))*V[celli];
+            weight += w;
+            weightedT += w*T[celli];
+        }
+    }
+    reduce(weight, sumOp<scalar>());
+    reduce(weightedT, sumOp<scalar>());
+    if (weight > 0)
+    {
+        absorptivity_ = absorptivity(weightedT/weight);
+        Info<< "Laser: surface temperature " << weightedT/weight
+            << " K, absorptivity " << absorptivity_ << endl;
+    }
 }
 
 // ************************************************************************* //

@@ -46,6 +46,14 @@ VARIANTS = {
     "laser_outside_domain": ("laser position (5e-3 0.3e-3 1e-4) outside the 1 mm x 0.2 mm slab", {"laser": "on"},
                              METAL, GAS, "laser { power 10; absorptivity 0.5; radius 5e-5; direction (0 -1 0); "
                              "position (5e-3 0.3e-3 1e-4); velocity (0 0 0); }\n", ["position", "outside"]),
+    "unknown_absorptivity_model": ("laser { absorptivityModel drude; }", {"laser": "on"}, METAL, GAS,
+                                   "laser { power 10; absorptivity 0.5; radius 5e-5; direction (0 -1 0); "
+                                   "position (0.5e-3 0.2e-3 1e-4); absorptivityModel drude; }\n",
+                                   ["absorptivityModel", "drude"]),
+    "missing_absorptivity_slope": ("laser { absorptivityModel linear; } without dAbsorptivitydT", {"laser": "on"},
+                                   METAL, GAS, "laser { power 10; absorptivity 0.5; radius 5e-5; direction (0 -1 0); "
+                                   "position (0.5e-3 0.2e-3 1e-4); absorptivityModel linear; Tabsorptivity 1700; }\n",
+                                   ["dAbsorptivitydT"]),
     "negative_boiling_point": ("evaporation Tboil = -3000", {"evaporation": "on"}, METAL, GAS,
                                "evaporation { pAmbient 1e5; CT 5e4; Tboil -3000; hv 6.583e6; cp 965; "
                                "Th0 663.731; CM 1.1095e-3; }\n", ["Tboil"]),

@@ -37,6 +37,7 @@ Usage
 
 #include "fvCFD.H"
 #include "physicsTerm.H"
+#include "laserTerm.H"
 #include "immiscibleIncompressibleTwoPhaseMixture.H"
 #include "fvcReconstruct.H"
 
@@ -150,6 +151,11 @@ int main(int argc, char *argv[])
     volScalarField magGradAlpha("magGradAlpha", mag(fvc::grad(alpha1)));
     magGradAlpha.write();
 
+    // the laser sets its step's absorptivity first, as the solver does
+    if (auto* laser = dynamic_cast<meltdem::laserTerm*>(term.get()))
+    {
+        laser->model().updateAbsorptivity(alpha1, T);
+    }
     tmp<volScalarField> q(term->heatSource(alpha1));
     say("heatSource", q.valid());
     if (q.valid())
