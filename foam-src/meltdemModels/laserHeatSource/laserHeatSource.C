@@ -386,25 +386,10 @@ Foam::tmp<Foam::volScalarField> Foam::meltdem::laserHeatSource::heatSource
         return tq;
     }
 
-    // <grad(alpha) . e> = |grad alpha| <-n_out . e>: the interface facing the beam
-    const volVectorField gradAlpha(fvc::grad(alphaMetal));
-    const point x0 = position(t);
-    const vector& e = direction_;
     const vectorField& C = mesh_.C();
     scalarField& qi = q.primitiveFieldRef();
-    scalar raw = 0;
-    forAll(qi, celli)
-    {
-        const scalar facing = gradAlpha[celli] & e;
-        if (facing > 0)
-        {
-            vector d = C[celli] - x0;
-            d -= (d & e)*e;
-            qi[celli] = exp(-2*magSqr(d)/sqr(radius_))*facing;
-            raw += qi[celli]*mesh_.V()[celli];
-        }
-    }
-    reduce(raw, sumOp<scalar>());
+    qi = facingShape(alphaMetal, position(t));
+    const scalar raw = gSum(qi*mesh_.V());
     if (shadow_)
     {
         // what the particles above a cell leave of the beam there
@@ -442,6 +427,32 @@ Foam::tmp<Foam::volScalarField> Foam::meltdem::laserHeatSource::heatSource
 }
 
 
+Foam::tmp<Foam::scalarField> Foam::meltdem::laserHeatSource::facingShape
+(
+    const volScalarField& alphaMetal,
+    const point& x0
+) const
+{
+    // <grad(alpha) . e> = |grad alpha| <-n_out . e>: the interface facing the beam
+    const volVectorField gradAlpha(fvc::grad(alphaMetal));
+    const vector& e = direction_;
+    const vectorField& C = mesh_.C();
+    tmp<scalarField> tshape(new scalarField(C.size(), Zero));
+    scalarField& shape = tshape.ref();
+    forAll(C, celli)
+    {
+        const scalar facing = gradAlpha[celli] & e;
+        if (facing > 0)
+        {
+            vector d = C[celli] - x0;
+            d -= (d & e)*e;
+            shape[celli] = exp(-2*magSqr(d)/sqr(radius_))*facing;
+        }
+    }
+    return tshape;
+}
+
+
 Foam::scalar Foam::meltdem::laserHeatSource::absorptivity(const scalar T) const
 {
     if (!linearAbsorptivity_)
@@ -467,28 +478,13 @@ void Foam::meltdem::laserHeatSource::updateAbsorptivity
         return;
     }
     // the beam's shape on the metal side of the surface facing it, as heatSource
-    const volVectorField gradAlpha(fvc::grad(alphaMetal));
-    const point x0 = position(mesh_.time().value());
-    const vector& e = direction_;
-    const vectorField& C = mesh_.C();
-    const scalarField& V = mesh_.V();
-    scalar weight = 0, weightedT = 0;
-    forAll(C, celli)
-    {
-        const scalar facing = gradAlpha[celli] & e;
-        if (facing > 0)
-        {
-            vector d = C[celli] - x0;
-            d -= (d & e)*e;
-            const scalar w =
-                exp(-2*magSqr(d)/sqr(radius_))*facing
-               *max(min(alphaMetal[celli], scalar(1)), scalar(0))*V[celli];
-            weight += w;
-            weightedT += w*T[celli];
-        }
-    }
-    reduce(weight, sumOp<scalar>());
-    reduce(weightedT, sumOp<scalar>());
+    const scalarField w
+    (
+        facingShape(alphaMetal, position(mesh_.time().value()))
+       *max(min(alphaMetal.primitiveField(), scalar(1)), scalar(0))*mesh_.V()
+    );
+    const scalar weight = gSum(w);
+    const scalar weightedT = gSum(w*T.primitiveField());
     if (weight > 0)
     {
         absorptivity_ = absorptivity(weightedT/weight);

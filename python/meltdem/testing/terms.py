@@ -37,7 +37,8 @@ def evaluate(case, term, grid, fields, properties, g=None, rho1=1.0, transport=N
         fc.field(case, name, DIMS[name], values, {"walls": "type zeroGradient;"} if not vector
                  else {"walls": "type noSlip;"}, vector=vector)
     fc.run(["blockMesh"], case, "log.blockMesh")
-    fc.run([paths.binary("meltdemTermCheck"), "-term", term, "-rho1", repr(rho1), "-rho2", repr(rho2)], case, "log.termCheck")
+    fc.run([paths.binary("meltdemTermCheck"), "-term", term, "-rho1", repr(rho1), "-rho2", repr(rho2)], case,
+           "log.termCheck")
     log = open(os.path.join(case, "log.termCheck")).read()
     hooks = {h: v == "yes" for h, v in re.findall(r"^hook (\w+) (yes|no)$", log, re.M)}
     outputs = {}
