@@ -386,7 +386,8 @@ def build(a):
                                              laser="on", particles="on" if a.particles else "off"),
                           # Marangoni density-scaled: on the metal side, so the argon moves by the melt's drag
                           surface=dict({k: METAL[k] for k in ("sigma0", "dSigmadT", "Tsigma0", "sigmaMin")},
-                                       **({"marangoniDensityScaled": 1} if a.marangoni else {})),
+                                       **({"marangoniDensityScaled": 1}
+                                          if a.marangoni and a.marangoni_scaling == "density" else {})),
                           extra=f"""
 metal {{ cp {METAL['cp']!r}; k {METAL['k']!r}; L {METAL['L']!r}; Tsolidus {METAL['Tsolidus']!r}; Tliquidus {METAL['Tliquidus']!r}; }}
 gas {{ cp {ARGON['cp']!r}; k {ARGON['k']!r}; }}
@@ -693,6 +694,9 @@ def main(argv=None):
                     help="Marangoni force on, density-scaled (the default)")
     ap.add_argument("--no-marangoni", dest="marangoni", action="store_false",
                     help="Marangoni force off (the conduction-shaped pool of the earlier releases)")
+    ap.add_argument("--marangoni-scaling", choices=["density", "none"], default="density",
+                    help="density: the force on the metal side of the interface (default); none: spread over "
+                    "the interface cells, which also drives the argon over the pool")
     ap.add_argument("--laser-shadow", action="store_true",
                     help="grains in the beam absorb and shadow (off by default: negligible in LMD, thesis 4.1)")
     ap.add_argument("--cold-start", action="store_true",
