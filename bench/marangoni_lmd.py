@@ -45,8 +45,8 @@ def start(work, a, key, flags):
 
 
 def largest_speeds(case):
-    """Largest |U| of the argon and of the liquid metal over the written times (uniform meshes only:
-    a refined case is read on its base cells, which is enough for the largest values)."""
+    """Largest |U| of the argon and of the liquid metal over the written times (every cell of the mesh
+    written at each time, refined or not)."""
     gas = melt = 0.0
     for d in fc.time_dirs(case):
         if float(d) == 0:
