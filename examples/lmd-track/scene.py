@@ -21,13 +21,11 @@ See README.md next to this file for the model, what it leaves out and the result
 """
 import argparse
 import copy
-import glob
 import json
 import math
 import os
 import shutil
 import sys
-import time
 
 import numpy as np
 
@@ -436,29 +434,7 @@ def refinement_dict(a):
 
 # ---------------------------------------------------------------------------------------------
 def run(case, np_=1):
-    t0 = time.time()
-    fc.run(["blockMesh"], case, "log.blockMesh")
-    solver = fc.solver()
-    if np_ == 1:
-        rc = fc.run([solver], case, "log.meltdemFoam", check=False)
-    else:
-        fc.dictionary(case, "system/decomposeParDict",
-                      f"numberOfSubdomains {np_};\nmethod simple;\ncoeffs {{ n ({np_} 1 1); }}\n")
-        fc.run(["decomposePar", "-force"], case, "log.decomposePar")
-        env = {"OMPI_ALLOW_RUN_AS_ROOT": "1", "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM": "1"}
-        rc = fc.run(["mpirun", "--allow-run-as-root", "--oversubscribe", "-np", str(np_), solver, "-parallel"],
-                    case, "log.meltdemFoam", env=env, check=False)
-        if rc == 0:
-            fc.reconstruct(case)          # reconstructParMesh first on the times a refinement changed
-    wall = time.time() - t0
-    meta = json.load(open(os.path.join(case, "scene.json")))
-    meta.update(wall_seconds=wall, np=np_, rc=rc)
-    json.dump(meta, open(os.path.join(case, "scene.json"), "w"), indent=1)
-    if rc != 0:
-        tail = open(os.path.join(case, "log.meltdemFoam")).read()[-3000:]
-        raise RuntimeError(f"meltdemFoam failed (rc {rc}) in {case}:\n{tail}")
-    print(f"lmd-track: ran in {wall:.0f} s")
-    return wall
+    return fc.run_scene_case(case, np_, "lmd-track")
 
 
 # ---------------------------------------------------------------------------------------------
@@ -543,7 +519,7 @@ def analyse(case, quiet=False):
         "section_x_mm": [1e3 * float(rows[0, 0]), 1e3 * float(rows[-1, 0])],
         "time_s": float(tds[-1]) if not have_ledger else float(led["time"][-1]),
         "cells": int(g.cells()), "dx_mm": 1e3 * meta["dx"], "track_mm": 1e3 * meta["track"],
-        "refine_levels": levels, "base_cells": int(base.cells()), "most_cells": most_cells(case, base.cells()),
+        "refine_levels": levels, "base_cells": int(base.cells()), "most_cells": fc.most_cells(case, base.cells()),
         "cpu_seconds": fc.execution_time(case),
         "absorptivity": meta["absorptivity"], "powder_spot_over_laser_spot": meta.get("powder_spot", 1.0),
         "wall_seconds": meta.get("wall_seconds"),
@@ -610,14 +586,6 @@ def geometric_capture(g, meta, tds, read_field, n_last=3):
         out.append(got)
     eta = float(np.mean(out))
     return {"geometric_capture_pct": 100.0 * eta, "geometric_capture_spread_pct": 100.0 * float(np.ptp(out))}
-
-
-def most_cells(case, base_cells):
-    """The most cells the mesh had (the refinement ledger's cellsAfter; the base mesh without one)."""
-    if not glob.glob(os.path.join(case, "postProcessing", "refinement", "*", "refinement.csv")):
-        return int(base_cells)
-    rows, _ = fc.refinement_ledger(case)
-    return int(max([base_cells] + [int(r["cellsAfter"]) for r in rows]))
 
 
 def lammps_molten(case):

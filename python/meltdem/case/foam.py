@@ -477,3 +477,44 @@ def reconstruct(case, fields=None, check=True):
     """Run reconstruct_commands(case, fields)."""
     for cmd, log in reconstruct_commands(case, fields):
         run(cmd, case, log, check=check)
+
+
+def most_cells(case, base_cells):
+    """The most cells the mesh had (the refinement ledger's cellsAfter; the base mesh without one)."""
+    import glob
+    if not glob.glob(os.path.join(case, "postProcessing", "refinement", "*", "refinement.csv")):
+        return int(base_cells)
+    rows, _ = refinement_ledger(case)
+    return int(max([base_cells] + [int(r["cellsAfter"]) for r in rows]))
+
+
+def run_scene_case(case, np_, name, decomposition=None):
+    """blockMesh, then meltdemFoam serial or on np_ ranks (decomposePar `simple` along x unless
+    decomposition (nx ny nz) is given; reconstructed after), the wall time and return code booked in
+    CASE/scene.json; raises RuntimeError with the log's tail when the solver fails."""
+    import json
+    import time
+    t0 = time.time()
+    run(["blockMesh"], case, "log.blockMesh")
+    if np_ == 1:
+        rc = run([solver()], case, "log.meltdemFoam", check=False)
+    else:
+        n = decomposition or (np_, 1, 1)
+        dictionary(case, "system/decomposeParDict",
+                   f"numberOfSubdomains {np_};\nmethod simple;\ncoeffs {{ n ({n[0]} {n[1]} {n[2]}); }}\n")
+        run(["decomposePar", "-force"], case, "log.decomposePar")
+        env = {"OMPI_ALLOW_RUN_AS_ROOT": "1", "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM": "1"}
+        rc = run(["mpirun", "--allow-run-as-root", "--oversubscribe", "-np", str(np_), solver(), "-parallel"],
+                 case, "log.meltdemFoam", env=env, check=False)
+        if rc == 0:
+            reconstruct(case)          # reconstructParMesh first on the times a refinement changed
+    wall = time.time() - t0
+    path = os.path.join(case, "scene.json")
+    meta = json.load(open(path))
+    meta.update(wall_seconds=wall, np=np_, rc=rc)
+    json.dump(meta, open(path, "w"), indent=1)
+    if rc != 0:
+        tail = open(os.path.join(case, "log.meltdemFoam")).read()[-3000:]
+        raise RuntimeError(f"meltdemFoam failed (rc {rc}) in {case}:\n{tail}")
+    print(f"{name}: ran in {wall:.0f} s")
+    return wall
