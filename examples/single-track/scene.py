@@ -3,7 +3,8 @@
 2020), continuum only (meltdemFoam, no particles).
 
     scene.py build CASE [--ci | --full] [--track-case AMMT-A|..|CBM-C] [--dx UM] [--refine L] [--track MM]
-                   [--absorptivity ETA] [--no-marangoni] [--no-surface-tension] [--no-recoil]
+                   [--absorptivity ETA] [--dabsorptivity-dt K] [--dsigma-dt D] [--no-marangoni]
+                   [--no-surface-tension] [--no-recoil]
     scene.py run CASE [--np N]
     scene.py analyse CASE
     scene.py all CASE [build options] [--np N]
@@ -173,6 +174,10 @@ def build(a):
     if a.dsigma_dt is not None:
         surface["dSigmadT"] = a.dsigma_dt
     surface.update(nSmooth=2, **({"marangoniDensityScaled": 1} if a.marangoni else {}))
+    # absorptivity linear in the beam-weighted surface temperature, eta at the liquidus (laser term README)
+    absorptivity_model = "" if a.dabsorptivity_dt is None else (
+        f"    absorptivityModel linear; dAbsorptivitydT {a.dabsorptivity_dt!r}; Tabsorptivity {METAL['Tliquidus']!r};\n"
+        f"    absorptivityMin 0; absorptivityMax {a.absorptivity_max!r};\n")
     extra = f"""metal {{ cp {METAL['cp']!r}; k {METAL['k']!r}; L {METAL['L']!r}; Tsolidus {METAL['Tsolidus']!r}; Tliquidus {METAL['Tliquidus']!r}; }}
 gas {{ cp {ARGON['cp']!r}; k {ARGON['k']!r}; }}
 darcy {{ C 1e10; b 1e-3; }}
@@ -181,7 +186,7 @@ laser
 {{
     power           {0.5 * track['power']!r};   // half model: P/2
     absorptivity    {eta!r};
-    radius          {0.5 * track['spot']!r};   // 1/e^2 radius = D4sigma / 2
+{absorptivity_model}    radius          {0.5 * track['spot']!r};   // 1/e^2 radius = D4sigma / 2
     direction       (0 -1 0);
     position        ({g['x0']!r} {y_beam!r} 0);
     velocity        ({track['speed']!r} 0 0);
@@ -192,6 +197,7 @@ laser
     fc.meltdem_properties(case, physics=physics, surface=surface, extra=extra)
     keep = ("dx", "refine", "refine_interval", "track", "lx", "ly", "lz", "sub", "gas", "x0", "base", "write")
     meta = dict(scene="single-track", variant=a.variant, track_case=a.track_case, absorptivity=eta,
+                dabsorptivity_dt=a.dabsorptivity_dt, absorptivity_max=a.absorptivity_max,
                 physics=physics, dsigma_dt=surface["dSigmadT"], end=end, max_dt=max_dt, **{k: g[k] for k in keep})
     with open(os.path.join(case, "scene.json"), "w") as f:
         json.dump(meta, f, indent=1)
@@ -310,6 +316,10 @@ def main(argv=None):
     ap.add_argument("--refine-interval", type=int, default=5, metavar="N", help="fluid steps between mesh updates")
     ap.add_argument("--track", type=lambda s: float(s) * 1e-3, help="track length [mm]")
     ap.add_argument("--absorptivity", type=float, help=f"absorbed fraction of the beam (default {ABSORPTIVITY})")
+    ap.add_argument("--dabsorptivity-dt", type=float, metavar="PER_K",
+                    help="absorptivity linear in the surface temperature under the beam: this slope [1/K], the "
+                    "absorptivity at the liquidus (default: constant)")
+    ap.add_argument("--absorptivity-max", type=float, default=1.0, help="upper bound of the linear absorptivity")
     ap.add_argument("--dsigma-dt", type=float, help=f"dsigma/dT [N/m/K] (default {METAL['dSigmadT']:g})")
     ap.add_argument("--no-marangoni", dest="marangoni", action="store_false")
     ap.add_argument("--no-surface-tension", dest="surface_tension", action="store_false")
