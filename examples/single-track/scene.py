@@ -341,7 +341,7 @@ def main(argv=None):
 
 SCENE = Scene(name="single-track", kind="continuum",
               title="Bare-plate laser single tracks on IN625 (AM Bench 2018, AMB2018-02)",
-              ci_time="~3 min", full_time="~40 min",
+              ci_time="1.5 min (AMMT-B)", full_time="~25 min on 2 ranks (AMMT-B, 5 um; from the mesh bench)",
               build=lambda case, size: main(["build", case, f"--{size}"]),
               analyse=lambda case: main(["analyse", case]),
               summary=lambda case: analyse(case, quiet=True))
