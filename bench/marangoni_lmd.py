@@ -69,7 +69,7 @@ def result(work, key, label):
     case = case_of(work, key)
     s = scene.analyse(case, quiet=True)
     gas, melt = largest_speeds(case)
-    steps = len([ln for ln in open(os.path.join(case, "log.meltdemFoam")) if ln.startswith("Time = ")])
+    steps = fc.fluid_steps(case)
     return dict(key=key, label=label, width_mm=s["bead_width_mm"], height_mm=s["bead_height_mm"],
                 penetration_mm=s["penetration_mm"],
                 capture_pct=s.get("deposition_efficiency_pct", s.get("geometric_capture_pct")),

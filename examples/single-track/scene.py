@@ -160,7 +160,7 @@ def build(a):
     # the conservation ledger every step; on a refining run each write's cell centres and volumes
     functions = "    balance { type meltdemBalance; }\n"
     if g["refine"]:
-        functions += fc.CELL_GEOMETRY_FUNCTIONS.split("{", 1)[1].rsplit("}", 1)[0]
+        functions += fc.CELL_GEOMETRY_ENTRIES
     fc.control_dict(case, "meltdemFoam", end, 0.1 * max_dt, g["write"], max_co=0.3, max_alpha_co=0.3,
                     max_dt=max_dt, extra="functions\n{\n" + functions + "}\n")
     fc.fv_schemes(case)
@@ -270,20 +270,12 @@ def analyse(case, quiet=False):
              measured_depth_um=track["depth"], measured_depth_sd_um=track["depth_sd"],
              cpu_seconds=cpu, wall_seconds=meta.get("wall_seconds"),
              most_cells=fc.most_cells(case, np.prod(cells(meta, meta["base"]))))
-    s["fluid_steps"] = fluid_steps(case)
+    s["fluid_steps"] = fc.fluid_steps(case)
     with open(os.path.join(case, "summary.json"), "w") as f:
         json.dump(s, f, indent=1)
     if not quiet:
         print_table(s)
     return s
-
-
-def fluid_steps(case):
-    n = 0
-    for line in open(os.path.join(case, "log.meltdemFoam"), errors="replace"):
-        if line.startswith("Time = "):
-            n += 1
-    return n
 
 
 def tolerance(measured, sd):

@@ -357,14 +357,12 @@ def finish(ok, work, keep=False, shown=None):
     return 0 if ok else 1
 
 
-CELL_GEOMETRY_FUNCTIONS = """functions
-{
-    centres { type writeCellCentres; libs (fieldFunctionObjects); writeControl writeTime; }
+CELL_GEOMETRY_ENTRIES = """    centres { type writeCellCentres; libs (fieldFunctionObjects); writeControl writeTime; }
     volumes { type writeCellVolumes; libs (fieldFunctionObjects); writeControl writeTime; }
-}
 """
+CELL_GEOMETRY_FUNCTIONS = "functions\n{\n" + CELL_GEOMETRY_ENTRIES + "}\n"
 """controlDict functions of a refining run: each write time's cell centres C and volumes V, for
-lattice_field."""
+lattice_field (the entries alone: CELL_GEOMETRY_ENTRIES, to join other function objects)."""
 
 
 def lattice_field(case, time, name, n_fine, h, origin=(0.0, 0.0, 0.0)):
@@ -447,6 +445,12 @@ def refinement_dict(levels, interval, criteria, buffer_layers=1):
 {body}    }}
 }}
 """
+
+
+def fluid_steps(case, log="log.meltdemFoam"):
+    """The number of time steps in CASE/log (its 'Time = ' lines)."""
+    with open(os.path.join(case, log), errors="replace") as f:
+        return sum(1 for line in f if line.startswith("Time = "))
 
 
 def execution_time(case, log="log.meltdemFoam"):
