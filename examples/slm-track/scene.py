@@ -3,7 +3,7 @@
 coupled meltdemFoam + LAMMPS.
 
     scene.py build CASE [--ci | --full] [--cell H] [--bed DUMP] [--track L] [--distribution M]
-                   [--gas-cp CP] [--gas-mu MU] [--fluid-dt DT]
+                   [--gas-cp CP] [--gas-mu MU] [--fluid-dt DT] [--no-surface]
     scene.py run CASE [--np N]
     scene.py analyse CASE
     scene.py all CASE [--ci | --full] [--np N] [build options]
@@ -52,7 +52,7 @@ T0 = 300.0
 DEM_DT = 5e-9                                      # s: 1/10 of the Hertz time of two 15 um grains at 1 m/s
 VMAX_DEM = 10.0                                    # m/s: speed limit of the DEM integration (see in.particles)
 FLUID_DT = 5e-7                                    # s: fluid step (fixed, see README)
-SURFACE = False                                    # surface tension and Marangoni (see README)
+SURFACE = True                                     # surface tension and Marangoni (see README)
 G = 9.81                                            # the bed was poured at 10 g; the scan runs at 1 g
 
 VARIANTS = {
@@ -561,7 +561,10 @@ def main(argv=None):
     ap.add_argument("--courant", type=float, metavar="CO",
                     help="adaptive fluid step: the largest with cell and interface Courant numbers <= CO (at most "
                     "--fluid-dt), DEM sub-cycles recomputed every step (demStepsPerFluidStep auto)")
-    ap.add_argument("--surface", action="store_true", help="surface tension and Marangoni on (see README)")
+    ap.add_argument("--surface", dest="surface", action="store_true", default=SURFACE,
+                    help="surface tension and Marangoni on (the default)")
+    ap.add_argument("--no-surface", dest="surface", action="store_false",
+                    help="surface tension and Marangoni off (the scene's default before 2026-12-04)")
     ap.add_argument("--gas-mu", type=float, help="gas viscosity [Pa s] (default argon's 2.2e-5)")
     ap.add_argument("--refine", type=int, default=0, metavar="L",
                     help="adaptive refinement: base cells 2^L x --cell, refined to --cell in the pool, under "
@@ -573,7 +576,7 @@ def main(argv=None):
     if a.command in ("build", "all"):
         bed = a.bed if a.bed in (None, "spread") else os.path.abspath(a.bed)
         build(case, variant, a.cell, bed, a.track, a.distribution, a.np, a.gas_cp,
-              a.fluid_dt, a.gas_mu, a.surface or None, a.refine, a.refine_interval, a.courant)
+              a.fluid_dt, a.gas_mu, a.surface, a.refine, a.refine_interval, a.courant)
     if a.command in ("run", "all"):
         run(case, a.np)
     if a.command in ("analyse", "all"):
