@@ -27,6 +27,7 @@ import numpy as np
 from meltdem import paths
 from meltdem.case import coupled as cc
 from meltdem.case import foam as fc
+from meltdem.case import laser
 from meltdem.io import dumps
 from meltdem.scene import Scene
 
@@ -148,8 +149,7 @@ energyControls {{ nCorrectors 30; tolerance 1e-10; }}
 laser
 {{
     power        {P_LASER!r};
-    absorptivity {ETA!r};
-    radius       {R_W!r};
+{laser.absorptivity_entries(a, ETA, T_MELT + DT_MUSHY / 2)}    radius       {R_W!r};
     direction    (0 0 -1);
     position     ({CX!r} {CY!r} {LZ - a.dx / 2!r});
     tOn          0;
@@ -260,6 +260,12 @@ def laser_budget(case):
     return p["time"][:k], p["dt"][:k], cont[:k], p["laser_heat"][:k] / p["dt"][:k]
 
 
+def laser_absorptivity(case, eta0):
+    """Per fluid step, as laser_budget: the absorptivity the step used (the linear model's, from the log)."""
+    log = open(os.path.join(case, "log.meltdemFoam")).read()
+    return laser.step_absorptivity(log, eta0)[2][:len(cc.particles_csv(case))]
+
+
 def particle_events(tracks, t_end):
     """Per particle: arrival = first dump time its bottom reaches the substrate top, it is
     deflected (velocity off the initial by > 20 %), or it melts away within 5 um of the
@@ -319,7 +325,9 @@ def analyse(case):
     lit = (t - dt >= 0) & (t <= (T_OFF if a["switch_off"] else 1e9))
     if a["switch_off"]:
         lit &= t <= T_OFF - 1e-15
-    err = np.abs(cont + part - ETA * P_LASER)[lit] / (ETA * P_LASER)
+    eta0 = ETA if a.get("absorptivity") is None else a["absorptivity"]
+    eta_p = laser_absorptivity(case, eta0)[:len(t)] * P_LASER
+    err = (np.abs(cont + part - eta_p) / eta_p)[lit]
     dark = ~lit & (t - dt >= T_OFF - 1e-15) if a["switch_off"] else np.zeros_like(lit)
     d = cc.ledger(case)
     steps = d[1:]
@@ -347,9 +355,10 @@ def analyse(case):
     s["laser_worst_rel_error_lit"] = float(err.max()) if len(err) else None
     s["laser_absorbed_by_particles_J"] = float(np.sum(part * dt))
     s["laser_absorbed_by_continuum_J"] = float(np.sum(cont * dt))
-    lost = np.sum(((ETA * P_LASER - cont - part) * dt)[lit])
+    lost = np.sum(((eta_p - cont - part) * dt)[lit])
     s["laser_energy_short_of_eta_P_J"] = float(lost)
-    s["laser_energy_short_of_eta_P_fraction"] = float(lost / np.sum((ETA * P_LASER * dt)[lit]))
+    s["laser_energy_short_of_eta_P_fraction"] = float(lost / np.sum((eta_p * dt)[lit]))
+    s["laser_absorptivity_mean_lit"] = float(np.sum((eta_p * dt)[lit]) / np.sum(dt[lit]) / P_LASER)
     s["laser_max_after_off_W"] = float(np.max(cont[dark] + part[dark])) if np.any(dark) else None
     s["worst_mass_continuum_error"] = float(np.max(np.abs(steps["mass_continuum_error"])))
     s["worst_enthalpy_continuum_error"] = float(np.max(np.abs(steps["enthalpy_continuum_error"])))
@@ -414,7 +423,9 @@ def main(argv=None):
                     help="adaptive refinement: base cells 2^L x --dx, refined to --dx in the pool, under the beam "
                     "and around the grains (refinement{})")
     ap.add_argument("--refine-interval", type=int, default=1, metavar="N", help="fluid steps between mesh updates")
+    laser.add_absorptivity_arguments(ap, ETA)
     a = ap.parse_args(argv)
+    laser.check_absorptivity_arguments(ap, a, ETA)
     v = VARIANTS[a.variant or "ci"]
     a.dx = a.dx or v["dx"]
     a.end = a.end or (v["end_off"] if a.switch_off else v["end"])

@@ -33,6 +33,7 @@ from meltdem import paths
 from meltdem.analysis import profiles
 from meltdem.case import coupled as cc
 from meltdem.case import foam as fc
+from meltdem.case import laser
 from meltdem.scene import Scene
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -394,8 +395,7 @@ energyControls {{ nCorrectors 20; tolerance 1e-10; }}
 laser
 {{
     power           {laser_power!r};   // half model: P/2
-    absorptivity    {a.absorptivity!r};
-    radius          {0.5 * PROCESS['spot_diameter']!r};   // 1/e^2 radius of the 2.5 mm spot
+{laser.absorptivity_entries(a, a.absorptivity, METAL['Tliquidus'])}    radius          {0.5 * PROCESS['spot_diameter']!r};   // 1/e^2 radius of the 2.5 mm spot
     direction       (0 0 -1);
     position        ({g.x_start!r} 0 0);
     velocity        ({PROCESS['speed']!r} 0 0);
@@ -648,7 +648,7 @@ def main(argv=None):
     ap.add_argument("--dx", type=float, help="fine cell size [mm]")
     ap.add_argument("--track", type=float, help="track length [mm]")
     ap.add_argument("--write", type=float, help="write interval [s]")
-    ap.add_argument("--absorptivity", type=float)
+    laser.add_absorptivity_arguments(ap, VARIANTS["ci"]["absorptivity"])
     ap.add_argument("--powder-spot", type=float, default=1.0,
                     help="powder spot 1/e^2 diameter / laser spot diameter (default 1: coaxial focus)")
     ap.add_argument("--powder-speed", type=float, default=1.0, help="grain speed at the nozzle exit [m/s]")
@@ -678,6 +678,7 @@ def main(argv=None):
     ap.add_argument("--refine-interval", type=int, default=1, metavar="N", help="fluid steps between mesh updates")
     ap.add_argument("--np", type=int, default=1)
     a = ap.parse_args(argv)
+    laser.check_absorptivity_arguments(ap, a, VARIANTS["ci"]["absorptivity"])
     a.case = os.path.abspath(a.case)
     if a.action in ("build", "all"):
         var = dict(VARIANTS[a.variant or "ci"])

@@ -6,7 +6,8 @@ See README.md.
 
     scene.py build CASE [--ci | --full] [--hatch 80e-6] [--tracks 3] [--order serpentine]
                         [--return-time 30e-6] [--speed 2] [--length 80e-6] [--dx 10e-6]
-                        [--grains N] [--bed-process pour|spread] [--balance N]
+                        [--grains N] [--bed-process pour|spread] [--balance N] [--absorptivity ETA]
+                        [--dabsorptivity-dt PER_K [--absorptivity-min ETA] [--absorptivity-max ETA]]
     scene.py run CASE [--np N] [--timeout S]
     scene.py analyse CASE          (prints the table, writes CASE/summary.json)
     scene.py all CASE [--ci | --full] [--np N] ...
@@ -14,6 +15,7 @@ See README.md.
 import argparse
 import os
 
+from meltdem.case import laser
 from meltdem.scene import Scene
 
 import layer
@@ -43,7 +45,9 @@ def main(argv=None):
                     help="LAMMPS fix balance by particle count every N DEM steps (shift x z)")
     ap.add_argument("--np", type=int, default=1, help="MPI ranks")
     ap.add_argument("--timeout", type=float, default=None, help="wall-clock limit of the solver [s]")
+    laser.add_absorptivity_arguments(ap, layer.pbf.ETA)
     args = ap.parse_args(argv)
+    laser.check_absorptivity_arguments(ap, args, layer.pbf.ETA)
     case = os.path.abspath(args.case)
     if args.action in ("build", "all"):
         try:
@@ -52,7 +56,7 @@ def main(argv=None):
                                dx=args.dx, n=args.grains, balance=args.balance)
         except ValueError as e:
             ap.error(str(e))
-        layer.pbf.build(case, cfg, bed_dir=args.bed, bed_process=args.bed_process)
+        layer.pbf.build(case, cfg, bed_dir=args.bed, bed_process=args.bed_process, laser_args=args)
     if args.action in ("run", "all"):
         layer.pbf.run(case, args.np, args.timeout)
     if args.action in ("analyse", "all"):

@@ -20,6 +20,7 @@ import numpy as np
 from meltdem import paths
 from meltdem.case import coupled as cc
 from meltdem.case import foam as fc
+from meltdem.case import laser
 from meltdem.io import dumps
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -159,8 +160,9 @@ def centres(cfg):
 
 
 def laser_dict(cfg):
-    lines = [f"power {cfg['power']!r};", f"absorptivity {ETA!r};", f"radius {cfg['rw']!r};",
-             "direction (0 -1 0);"]
+    lines = [f"power {cfg['power']!r};", *laser.absorptivity_entries(cfg.get("laser_args"), ETA,
+                                                                     T_MELT + DT_MUSHY / 2, "").splitlines(),
+             f"radius {cfg['rw']!r};", "direction (0 -1 0);"]
     y = cfg["ly"] - cfg["dx"] / 2
     if cfg.get("tracks"):
         # hatched tracks (examples/pbf-layer): scanned in order, the beam off while it returns
@@ -305,7 +307,7 @@ def refinement_dict(cfg, levels, interval):
 
 
 def build(case, variant, dx=None, dist=None, n=None, bed_dir=None, seed=4711, gas_cp=G["cp"], shadow=True,
-          bed_process="pour", refine=0, refine_interval=1):
+          bed_process="pour", refine=0, refine_interval=1, laser_args=None):
     """variant: a name in VARIANTS or the configuration itself (examples/pbf-layer's, with its
     'variant' and 'scene')."""
     cfg = dict(VARIANTS[variant]) if isinstance(variant, str) else dict(variant)
@@ -313,6 +315,7 @@ def build(case, variant, dx=None, dist=None, n=None, bed_dir=None, seed=4711, ga
     cfg["gas_cp"] = gas_cp
     cfg["shadow"] = shadow
     cfg["refine"] = refine
+    cfg["laser_args"] = laser.absorptivity_meta(laser_args, ETA)
     if dx:
         cfg["dx"] = dx
     if dist:
@@ -583,7 +586,13 @@ def laser_energy(case, cfg):
     p = cc.particles_csv(case)
     grains_ = float(np.sum(p["laser_heat"]))
     t_end = float(p["time"][-1])
-    return cont, grains_, ETA * cfg["power"] * lit_time(cfg, t_end), evap, t_end
+    eta0 = cfg.get("laser_args", {}).get("absorptivity", ETA)
+    if cfg.get("laser_args", {}).get("dabsorptivity_dt") is None:
+        return cont, grains_, eta0 * cfg["power"] * lit_time(cfg, t_end), evap, t_end
+    # the linear model: eta P integrated over the steps' lit time
+    log = open(os.path.join(case, "log.meltdemFoam")).read()
+    eta_t = laser.absorbed_fraction_integral(log, eta0, lambda t: lit_time(cfg, min(t, t_end)))
+    return cont, grains_, cfg["power"] * eta_t, evap, t_end
 
 
 def summary(case):

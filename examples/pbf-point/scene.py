@@ -4,7 +4,8 @@ on a 500-grain log-normal (16-32 um) bed on an 80 um steel substrate, 320 x 320 
 on until 0.1 ms, off until 0.25 ms; meltdemFoam (melt pool, recoil, evaporation) hosting
 LAMMPS (the grains). See README.md.
 
-    scene.py build CASE [--ci | --full] [--dx 10e-6] [--dist overlap] [--grains N]
+    scene.py build CASE [--ci | --full] [--dx 10e-6] [--dist overlap] [--grains N] [--absorptivity ETA]
+                   [--dabsorptivity-dt PER_K [--absorptivity-min ETA] [--absorptivity-max ETA]]
     scene.py run CASE [--np N]
     scene.py analyse CASE          (prints the table, writes CASE/summary.json)
     scene.py all CASE [--ci | --full] [--np N]
@@ -12,6 +13,7 @@ LAMMPS (the grains). See README.md.
 import argparse
 import os
 
+from meltdem.case import laser
 from meltdem.scene import Scene
 
 import pbf
@@ -44,13 +46,15 @@ def main(scene=VARIANT, doc=__doc__, argv=None):
                     help="adaptive refinement: base cells 2^L x --dx, refined to --dx in the pool, under the beam "
                     "and its path ahead and around the grains near them (refinement{})")
     ap.add_argument("--refine-interval", type=int, default=1, metavar="N", help="fluid steps between mesh updates")
+    laser.add_absorptivity_arguments(ap, pbf.ETA)
     args = ap.parse_args(argv)
+    laser.check_absorptivity_arguments(ap, args, pbf.ETA)
     case = os.path.abspath(args.case)
     variant = f"{scene}-{'full' if args.full else 'ci'}"
     if args.action in ("build", "all"):
         pbf.build(case, variant, dx=args.dx, dist=args.dist, n=args.grains, bed_dir=args.bed,
                   gas_cp=args.gas_cp, shadow=not args.no_shadow, bed_process=args.bed_process,
-                  refine=args.refine, refine_interval=args.refine_interval)
+                  refine=args.refine, refine_interval=args.refine_interval, laser_args=args)
     if args.action in ("run", "all"):
         pbf.run(case, args.np, args.timeout)
     if args.action in ("analyse", "all"):

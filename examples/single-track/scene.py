@@ -3,7 +3,8 @@
 2020), continuum only (meltdemFoam, no particles).
 
     scene.py build CASE [--ci | --full] [--track-case AMMT-A|..|CBM-C] [--dx UM] [--refine L] [--track MM]
-                   [--absorptivity ETA] [--dabsorptivity-dt K] [--dsigma-dt D] [--no-marangoni]
+                   [--absorptivity ETA] [--dabsorptivity-dt K [--absorptivity-min A] [--absorptivity-max B]]
+                   [--dsigma-dt D] [--no-marangoni]
                    [--no-surface-tension] [--no-recoil]
     scene.py run CASE [--np N]
     scene.py analyse CASE
@@ -30,6 +31,7 @@ from meltdem import paths
 from meltdem.analysis import profiles
 from meltdem.case import coupled as cc
 from meltdem.case import foam as fc
+from meltdem.case import laser
 from meltdem.scene import Scene
 
 paths.set_tool_environment()
@@ -124,7 +126,7 @@ def build(a):
     v["refine_interval"] = a.refine_interval
     track = TRACKS[a.track_case]
     g = geometry(v, track["spot"])
-    eta = ABSORPTIVITY if a.absorptivity is None else a.absorptivity
+    eta = laser.absorptivity(a, ABSORPTIVITY)
     n = cells(g, g["base"])
     cc.box_mesh(case, (0.0, -g["sub"], 0.0), (g["lx"], g["gas"], g["lz"]), n,
                 {"symmetry": ("symmetryPlane", ["zmin"]), "walls": ("wall", ["xmin", "xmax", "zmax"]),
@@ -174,10 +176,6 @@ def build(a):
     if a.dsigma_dt is not None:
         surface["dSigmadT"] = a.dsigma_dt
     surface.update(nSmooth=2, **({"marangoniDensityScaled": 1} if a.marangoni else {}))
-    # absorptivity linear in the beam-weighted surface temperature, eta at the liquidus (laser term README)
-    absorptivity_model = "" if a.dabsorptivity_dt is None else (
-        f"    absorptivityModel linear; dAbsorptivitydT {a.dabsorptivity_dt!r}; Tabsorptivity {METAL['Tliquidus']!r};\n"
-        f"    absorptivityMin 0; absorptivityMax {a.absorptivity_max!r};\n")
     extra = f"""metal {{ cp {METAL['cp']!r}; k {METAL['k']!r}; L {METAL['L']!r}; Tsolidus {METAL['Tsolidus']!r}; Tliquidus {METAL['Tliquidus']!r}; }}
 gas {{ cp {ARGON['cp']!r}; k {ARGON['k']!r}; }}
 darcy {{ C 1e10; b 1e-3; }}
@@ -185,8 +183,7 @@ energyControls {{ nCorrectors 20; tolerance 1e-10; }}
 laser
 {{
     power           {0.5 * track['power']!r};   // half model: P/2
-    absorptivity    {eta!r};
-{absorptivity_model}    radius          {0.5 * track['spot']!r};   // 1/e^2 radius = D4sigma / 2
+{laser.absorptivity_entries(a, ABSORPTIVITY, METAL['Tliquidus'])}    radius          {0.5 * track['spot']!r};   // 1/e^2 radius = D4sigma / 2
     direction       (0 -1 0);
     position        ({g['x0']!r} {y_beam!r} 0);
     velocity        ({track['speed']!r} 0 0);
@@ -196,9 +193,9 @@ laser
 {evaporation_dict() if a.recoil else ""}{refinement_dict(g, track, max_dt) if g['refine'] else ""}"""  # noqa: E501
     fc.meltdem_properties(case, physics=physics, surface=surface, extra=extra)
     keep = ("dx", "refine", "refine_interval", "track", "lx", "ly", "lz", "sub", "gas", "x0", "base", "write")
-    meta = dict(scene="single-track", variant=a.variant, track_case=a.track_case, absorptivity=eta,
-                dabsorptivity_dt=a.dabsorptivity_dt, absorptivity_max=a.absorptivity_max,
-                physics=physics, dsigma_dt=surface["dSigmadT"], end=end, max_dt=max_dt, **{k: g[k] for k in keep})
+    meta = dict(scene="single-track", variant=a.variant, track_case=a.track_case,
+                **laser.absorptivity_meta(a, ABSORPTIVITY), physics=physics, dsigma_dt=surface["dSigmadT"], end=end,
+                max_dt=max_dt, **{k: g[k] for k in keep})
     with open(os.path.join(case, "scene.json"), "w") as f:
         json.dump(meta, f, indent=1)
     refined = f" refined to {g['dx'] * 1e6:g} um" if g["refine"] else ""
@@ -307,11 +304,7 @@ def main(argv=None):
     ap.add_argument("--refine", type=int, metavar="L", help="refinement levels: base cells 2^L x dx")
     ap.add_argument("--refine-interval", type=int, default=5, metavar="N", help="fluid steps between mesh updates")
     ap.add_argument("--track", type=lambda s: float(s) * 1e-3, help="track length [mm]")
-    ap.add_argument("--absorptivity", type=float, help=f"absorbed fraction of the beam (default {ABSORPTIVITY})")
-    ap.add_argument("--dabsorptivity-dt", type=float, metavar="PER_K",
-                    help="absorptivity linear in the surface temperature under the beam: this slope [1/K], the "
-                    "absorptivity at the liquidus (default: constant)")
-    ap.add_argument("--absorptivity-max", type=float, default=1.0, help="upper bound of the linear absorptivity")
+    laser.add_absorptivity_arguments(ap, ABSORPTIVITY)
     ap.add_argument("--dsigma-dt", type=float, help=f"dsigma/dT [N/m/K] (default {METAL['dSigmadT']:g})")
     ap.add_argument("--no-marangoni", dest="marangoni", action="store_false")
     ap.add_argument("--no-surface-tension", dest="surface_tension", action="store_false")
@@ -320,6 +313,7 @@ def main(argv=None):
     a = ap.parse_args(argv)
     a.case = os.path.abspath(a.case)
     a.variant = a.variant or "ci"
+    laser.check_absorptivity_arguments(ap, a, ABSORPTIVITY)
     if a.marangoni and not a.surface_tension:
         ap.error("--no-surface-tension needs --no-marangoni (the Marangoni force is the surface tension's gradient)")
     if a.action in ("build", "all"):
@@ -333,7 +327,7 @@ def main(argv=None):
 
 SCENE = Scene(name="single-track", kind="continuum",
               title="Bare-plate laser single tracks on IN625 (AM Bench 2018, AMB2018-02)",
-              ci_time="1.5 min (AMMT-B)", full_time="~25 min on 2 ranks (AMMT-B, 5 um; from the mesh bench)",
+              ci_time="1.5 min (AMMT-B)", full_time="29 min on 2 ranks (AMMT-B, 5 um, 1 mm track; measured)",
               build=lambda case, size: main(["build", case, f"--{size}"]),
               analyse=lambda case: main(["analyse", case]),
               summary=lambda case: analyse(case, quiet=True))

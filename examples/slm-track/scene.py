@@ -29,6 +29,7 @@ from meltdem import paths
 from meltdem.analysis import profiles
 from meltdem.case import coupled as cc
 from meltdem.case import foam as fc
+from meltdem.case import laser as beam
 from meltdem.io import dumps
 from meltdem.scene import Scene
 
@@ -184,7 +185,7 @@ def refinement_dict(levels, fluid_dt, interval=1):
 
 
 def build(case, variant, cell=None, bed=None, track=None, distribution="overlap", np_=1, gas_cp=None, fluid_dt=None,
-          gas_mu=None, surface=None, refine=0, refine_interval=1, courant=None):
+          gas_mu=None, surface=None, refine=0, refine_interval=1, courant=None, laser_args=None):
     v = dict(VARIANTS[variant])
     surface = SURFACE if surface is None else surface
     gas_cp = gas_cp or GAS_CP_CASE
@@ -246,8 +247,7 @@ def build(case, variant, cell=None, bed=None, track=None, distribution="overlap"
     laser = f"""laser
 {{
     power        {POWER!r};
-    absorptivity {ETA!r};
-    radius       {SPOT / 2!r};      // 1/e^2 radius of the 0.1 mm spot
+{beam.absorptivity_entries(laser_args, ETA, TLIQ)}    radius       {SPOT / 2!r};      // 1/e^2 radius of the 0.1 mm spot
     direction    (0 -1 0);
     position     ({v['x0']!r} {v['top']!r} {zc!r});
     velocity     ({SPEED!r} 0 0);
@@ -278,6 +278,7 @@ particles
                 t_end_s=t_end, laser_x0_m=v["x0"], laser_x1_m=v["x1"], track_z_m=zc, dt_capillary_s=dt_cap,
                 distribution=distribution, bed_dump=os.path.abspath(dump), gas_cp=gas_cp, gas_mu=gas_mu,
                 fluid_dt_s=n_sub * DEM_DT, courant=courant, refine=refine, base_cell=h,
+                **beam.absorptivity_meta(laser_args, ETA),
                 **{k: v[k] for k in ("lx", "lz", "top", "sub", "cell", "cool", "write")})
     json.dump(meta, open(os.path.join(case, "scene.json"), "w"), indent=1)
     print(f"case {case}: {variant}, {n[0]}x{n[1]}x{n[2]} cells of {h * 1e6:g} um"
@@ -446,14 +447,18 @@ def laser_power(case, meta):
     vs eta P, over the steps that lie wholly inside the scan."""
     log = open(os.path.join(case, "log.meltdemFoam")).read()
     cont = np.array([float(x) for x in re.findall(r"Laser: absorbed power (\S+) W", log)])
+    eta = beam.step_absorptivity(log, meta.get("absorptivity", ETA))[2]
     p = cc.particles_csv(case)
     n = min(len(cont), len(p))
     t = p["time"][:n]
     total = cont[:n] + p["laser_heat"][:n] / p["dt"][:n]
     inside = t <= meta["t_scan_s"] * (1 - 1e-12)
     energy = float(np.sum(total * p["dt"][:n]))
-    return dict(laser_power_worst_rel_error=float(np.max(np.abs(total[inside] - ETA * POWER)) / (ETA * POWER)),
-                laser_energy_absorbed_J=energy, laser_energy_eta_P_t_J=ETA * POWER * meta["t_scan_s"],
+    eta_p = eta[:n] * POWER
+    eta_mean = float(np.sum((eta[:n] * p["dt"][:n])[inside]) / np.sum(p["dt"][:n][inside]))
+    return dict(laser_power_worst_rel_error=float(np.max(np.abs(total - eta_p)[inside] / eta_p[inside])),
+                laser_energy_absorbed_J=energy, laser_energy_eta_P_t_J=eta_mean * POWER * meta["t_scan_s"],
+                laser_absorptivity_mean=eta_mean,
                 laser_power_particles_mean_W=float(np.sum(p["laser_heat"][:n]) / meta["t_scan_s"]),
                 fluid_steps=int(len(p)))
 
@@ -570,13 +575,15 @@ def main(argv=None):
                     help="adaptive refinement: base cells 2^L x --cell, refined to --cell in the pool, under "
                     "the beam and its path ahead and around the grains near them (refinement{})")
     ap.add_argument("--refine-interval", type=int, default=1, metavar="N", help="fluid steps between mesh updates")
+    beam.add_absorptivity_arguments(ap, ETA)
     a = ap.parse_args(argv)
+    beam.check_absorptivity_arguments(ap, a, ETA)
     case = os.path.abspath(a.case)
     variant = "full" if a.full else "ci"
     if a.command in ("build", "all"):
         bed = a.bed if a.bed in (None, "spread") else os.path.abspath(a.bed)
         build(case, variant, a.cell, bed, a.track, a.distribution, a.np, a.gas_cp,
-              a.fluid_dt, a.gas_mu, a.surface, a.refine, a.refine_interval, a.courant)
+              a.fluid_dt, a.gas_mu, a.surface, a.refine, a.refine_interval, a.courant, laser_args=a)
     if a.command in ("run", "all"):
         run(case, a.np)
     if a.command in ("analyse", "all"):
