@@ -16,7 +16,6 @@ script.
 Run by hand (minutes per run).
 """
 import argparse
-import glob
 import json
 import os
 import sys
@@ -24,20 +23,13 @@ import sys
 import numpy as np
 
 from meltdem import scene as scenes
+from meltdem.case import foam as fc
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import amr_pairs  # noqa: E402
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 scene = scenes.module("slm-track")
-
-
-def most_cells(case, meta):
-    refs = glob.glob(os.path.join(case, "postProcessing", "refinement", "*", "refinement.csv"))
-    if not refs:
-        return int(np.prod(meta["n_cells"]))
-    r = np.atleast_1d(np.genfromtxt(refs[0], delimiter=",", names=True))
-    return int(max(np.max(r["cellsAfter"]), np.prod(meta["n_cells"])))
 
 
 def one(work, bed, h, levels, fluid_dt, variant="ci", track=None, interval=1):
@@ -47,7 +39,8 @@ def one(work, bed, h, levels, fluid_dt, variant="ci", track=None, interval=1):
     scene.run(case)
     s = scene.analyse(case)
     meta = json.load(open(os.path.join(case, "scene.json")))
-    return dict(cell_um=h * 1e6, levels=levels, base_um=meta["base_cell"] * 1e6, cells=most_cells(case, meta),
+    return dict(cell_um=h * 1e6, levels=levels, base_um=meta["base_cell"] * 1e6,
+                cells=fc.most_cells(case, np.prod(meta["n_cells"])),
                 width_um=s["track_width_m"] * 1e6, depth_um=s["track_depth_m"] * 1e6, cpu_s=s["cpu_s"],
                 wall_s=s["wall_s"])
 

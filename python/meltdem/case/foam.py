@@ -328,6 +328,21 @@ def meltdem_properties(case, physics=None, surface=None, extra=""):
     dictionary(case, "constant/meltdemProperties", body)
 
 
+def set_physics(case, **switches):
+    """Set physics{} switches (e.g. marangoni="off") of a written CASE/constant/meltdemProperties;
+    a switch the case does not list is an error (KeyError), not silently added."""
+    import re
+    path = os.path.join(case, "constant", "meltdemProperties")
+    text = open(path).read()
+    block = re.search(r"^physics\s*\{(.*?)^\}", text, re.S | re.M)
+    body = block.group(1)
+    for name, value in switches.items():
+        body, n = re.subn(rf"^(\s*{name}\s+)\w+;", rf"\g<1>{value};", body, flags=re.M)
+        if n != 1:
+            raise KeyError(f"physics switch '{name}' not in {path}")
+    open(path, "w").write(text[:block.start(1)] + body + text[block.end(1):])
+
+
 def solver():
     """The solver under test: $MELTDEM_FOAM_SOLVER (to try a case with another build) or
     $MELTDEM_BIN/meltdemFoam."""

@@ -75,6 +75,9 @@ CASES = [
     ("region wall", lambda e, S, p: wall_case(e, S, p, region=True)),
 ]
 
+# the worst phase at S = 5 is measured within 0.5 % only here: a plain check; the rest stay XFAIL
+WORST_PHASE_WITHIN_AT_5 = {("wall, fix powder/dt", 0.3)}
+
 ok = True
 for name, case in CASES:
     for e in E_LIST:
@@ -87,6 +90,8 @@ for name, case in CASES:
                 mean = sum(values) / len(values)
                 ok &= check_relative(T, f"{name}: phase-mean e at S = {S} (prescribed {e})", mean, e, 0.005)
                 worst = max(values, key=lambda v: abs(v - e))
-                report(T, f"{name}: worst-phase e at S = {S} (prescribed {e})", worst, e, 0.005,
-                       abs(worst / e - 1) <= 0.005, xfail="velocity-Verlet's phase scatter at 5 steps per contact")
+                known = (name, e) in WORST_PHASE_WITHIN_AT_5
+                ok &= report(T, f"{name}: worst-phase e at S = {S} (prescribed {e})", worst, e, 0.005,
+                             abs(worst / e - 1) <= 0.005,
+                             xfail=None if known else "velocity-Verlet's phase scatter at 5 steps per contact")
 sys.exit(0 if ok else 1)
