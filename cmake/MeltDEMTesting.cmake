@@ -11,7 +11,9 @@ function(meltdem_test_environment test)
     "PYTHONPATH=${CMAKE_SOURCE_DIR}/python"
     "WM_PROJECT_DIR=${MELTDEM_FOAM_PROJECT_DIR}"
     "OMPI_ALLOW_RUN_AS_ROOT=1" "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1"
-    "OMPI_MCA_rmaps_base_oversubscribe=1")
+    "OMPI_MCA_rmaps_base_oversubscribe=1"
+    # (Open MPI 5's launcher, PRRTE, reads its own variable)
+    "PRTE_MCA_rmaps_default_mapping_policy=:oversubscribe")
 endfunction()
 
 # meltdem_add_script_test(NAME n LABELS l... COMMAND cmd args...)
