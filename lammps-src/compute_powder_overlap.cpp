@@ -10,6 +10,7 @@
 
 #include "compute_powder_overlap.h"
 
+#include "lammps_api.h"
 #include "atom.h"
 #include "comm.h"
 #include "error.h"
@@ -115,11 +116,7 @@ void ComputePowderOverlap::init()
   if (force->pair == nullptr) error->all(FLERR, "Compute powder/overlap requires a pair style be defined");
 
   // an occasional half list with the granular size cutoff, as compute contact/atom
-  int irequest = neighbor->request(this, instance_me);
-  neighbor->requests[irequest]->size = 1;
-  neighbor->requests[irequest]->pair = 0;
-  neighbor->requests[irequest]->compute = 1;
-  neighbor->requests[irequest]->occasional = 1;
+  meltdem::lammps_api::request_occasional_size_list(neighbor, this, instance_me);
 
   find_walls();
 }

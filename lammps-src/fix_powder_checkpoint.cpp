@@ -11,6 +11,7 @@
 
 #include "fix_powder_checkpoint.h"
 
+#include "lammps_api.h"
 #include "comm.h"
 #include "error.h"
 #include "update.h"
@@ -67,7 +68,7 @@ void FixPowderCheckpoint::end_of_step()
   MPI_Bcast(&ok, 1, MPI_INT, 0, world);
   if (!ok) error->all(FLERR, "Fix powder/checkpoint cannot create {}: {}", folder, utils::getsyserror());
   WriteRestart restart(lmp);
-  restart.multiproc_options(0, 0, 0, nullptr);
+  meltdem::lammps_api::single_file_restart(restart);
   restart.write(folder + "/" + kRestartFile);
   if (written) written(step, folder);
   next_reneighbor = step + every;

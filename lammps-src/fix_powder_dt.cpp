@@ -21,6 +21,11 @@
 #include "pair.h"
 #include "pair_granular.h"
 #include "update.h"
+#include "lammps_api.h"
+#if MELTDEM_LAMMPS_2025_API
+#include "gran_sub_mod_normal.h"
+#include "granular_model.h"
+#endif
 
 #include "meltdem/coupling/dem_step_control.h"
 #include "meltdem/coupling/hertz_contact.h"
@@ -36,6 +41,19 @@ using MathConst::MY_PI;
 namespace mc = meltdem::coupling;
 
 namespace {
+#if MELTDEM_LAMMPS_2025_API
+// E and nu of type pair i j from its granular model (the normal sub-model's accessors); false
+// when its normal model has no material (hooke, hertz)
+bool pair_material(PairGranular *gran, int i, int j, double &E, double &nu)
+{
+  if (!gran->models_list || !gran->types_indices) return false;
+  const Granular_NS::GranularModel *model = gran->models_list[gran->types_indices[i][j]];
+  if (!model || !model->normal_model || !model->normal_model->get_material_properties()) return false;
+  E = model->normal_model->get_emod();
+  nu = model->normal_model->get_poiss();
+  return true;
+}
+#else
 // PairGranular keeps E, nu and the normal model private and offers no accessor. An
 // explicit template instantiation may name private members (C++17 [temp.spec]/6); the
 // member pointers obtained that way read them from any PairGranular (stock granular and
@@ -66,6 +84,18 @@ bool has_material(int model)
 {
   return model == HERTZ_MATERIAL || model == DMT || model == JKR;
 }
+// E and nu of type pair i j as pair_coeff set them; false when its normal model has none
+bool pair_material(PairGranular *gran, int i, int j, double &E, double &nu)
+{
+  double **Es = gran->*member(EmodTag());
+  double **nus = gran->*member(PoissTag());
+  int **model = gran->*member(NormalTag());
+  if (!Es || !nus || !model || !has_material(model[i][j])) return false;
+  E = Es[i][j];
+  nu = nus[i][j];
+  return true;
+}
+#endif
 constexpr double BIG = std::numeric_limits<double>::max();
 }  // namespace
 
@@ -165,13 +195,9 @@ void FixPowderDt::read_pair_modulus()
                force->pair_style ? force->pair_style : "none");
 
   auto *gran = static_cast<PairGranular *>(pair);
-  double **E = gran->*member(EmodTag());
-  double **nu = gran->*member(PoissTag());
-  int **model = gran->*member(NormalTag());
   int **setflag = pair->setflag;
   const int ntypes = atom->ntypes;
-  if (!E || !nu || !model || !setflag)
-    error->all(FLERR, "Fix powder/dt: pair_style {} has no coefficients set", force->pair_style);
+  if (!setflag) error->all(FLERR, "Fix powder/dt: pair_style {} has no coefficients set", force->pair_style);
 
   estar = 0.0;
   // E and nu as the pair coefficients give them; out of range is the user's input to name
@@ -186,18 +212,18 @@ void FixPowderDt::read_pair_modulus()
   };
   for (int i = 1; i <= ntypes; i++)
     for (int j = i; j <= ntypes; j++) {
-      double Es;
-      int mod;
+      double Es = 0.0, E1, nu1, E2, nu2;
+      bool material = false;
       if (setflag[i][j]) {
-        mod = model[i][j];
-        if (has_material(mod)) Es = modulus(i, j, E[i][j], nu[i][j], E[i][j], nu[i][j]);
+        material = pair_material(gran, i, j, E1, nu1);
+        if (material) Es = modulus(i, j, E1, nu1, E1, nu1);
       } else if (setflag[i][i] && setflag[j][j]) {
-        mod = (has_material(model[i][i]) && has_material(model[j][j])) ? HERTZ_MATERIAL : -1;
-        if (mod == HERTZ_MATERIAL) Es = modulus(i, j, E[i][i], nu[i][i], E[j][j], nu[j][j]);
+        material = pair_material(gran, i, i, E1, nu1) && pair_material(gran, j, j, E2, nu2);
+        if (material) Es = modulus(i, j, E1, nu1, E2, nu2);
       } else
         error->all(FLERR, "Fix powder/dt: pair coefficients for types {} {} are not set", i, j);
       // dmt and jkr: the Hertz contact time of their E and nu (adhesion ignored)
-      if (!has_material(mod))
+      if (!material)
         error->all(FLERR,
                    "Fix powder/dt needs Young's modulus: pair_style {} must use hertz/material, dmt or jkr "
                    "for types {} {}",

@@ -20,6 +20,7 @@
 #include "error.h"
 #include "fix_powder_melt.h"
 #include "fix_wall_gran.h"
+#include "lammps_api.h"
 #include "force.h"
 #include "math_const.h"
 #include "modify.h"
@@ -91,8 +92,7 @@ FixPowderInsert::FixPowderInsert(LAMMPS *lmp, int narg, char **arg) :
   if (narg < 5) error->all(FLERR, "Illegal fix powder/insert command: expected N seed region ID diam DIST dens RHO");
   if (strcmp(update->unit_style, "si") != 0)
     error->all(FLERR, "Fix powder/insert requires units si (densities, masses and temperatures are SI)");
-  if (!atom->sphere_flag || !atom->radius_flag || !atom->rmass_flag)
-    error->all(FLERR, "Fix powder/insert requires atom style sphere");
+  if (!meltdem::lammps_api::sphere_style(atom)) error->all(FLERR, "Fix powder/insert requires atom style sphere");
   if (domain->dimension != 3) error->all(FLERR, "Fix powder/insert requires a 3d simulation");
   if (atom->tag_enable == 0) error->all(FLERR, "Fix powder/insert requires atom IDs");
 
@@ -104,7 +104,7 @@ FixPowderInsert::FixPowderInsert(LAMMPS *lmp, int narg, char **arg) :
   // an independent stream for positions: splitmix of a different word
   rng_pos = meltdem::coupling::Rng64(static_cast<std::uint64_t>(seed) ^ 0x5deece66dULL ^ (1ULL << 63));
 
-  iregion = -1;
+  insert_region = nullptr;
   ntype = 1;
   density = -1.0;
   ratemode = ALL;
@@ -134,8 +134,9 @@ FixPowderInsert::FixPowderInsert(LAMMPS *lmp, int narg, char **arg) :
     const std::string kw = arg[iarg];
     if (kw == "region") {
       need(1, "region");
-      iregion = domain->find_region(arg[iarg + 1]);
-      if (iregion == -1) error->all(FLERR, fmt::format("Fix powder/insert region ID {} does not exist", arg[iarg + 1]));
+      insert_region = meltdem::lammps_api::region(domain, arg[iarg + 1]);
+      if (!insert_region)
+        error->all(FLERR, fmt::format("Fix powder/insert region ID {} does not exist", arg[iarg + 1]));
       idregion = utils::strdup(arg[iarg + 1]);
       iarg += 2;
     } else if (kw == "diam") {
@@ -262,13 +263,13 @@ FixPowderInsert::FixPowderInsert(LAMMPS *lmp, int narg, char **arg) :
     }
   }
 
-  if (iregion < 0) error->all(FLERR, "Illegal fix powder/insert command: region keyword is required");
+  if (!insert_region) error->all(FLERR, "Illegal fix powder/insert command: region keyword is required");
   if (!diamflag) error->all(FLERR, "Illegal fix powder/insert command: diam keyword is required");
   if (density <= 0.0) error->all(FLERR, "Illegal fix powder/insert command: dens keyword is required");
   if (byvolume) dist = dist.by_volume();
 
   // the region must hold the largest particle with its gap to the region surface
-  Region *region = domain->regions[iregion];
+  Region *region = insert_region;
   if (!region->bboxflag)
     error->all(FLERR, fmt::format("Fix powder/insert region {} is unbounded (use side in)", idregion));
   const double need_len = dist.dmax() + 2.0 * gap;
@@ -310,9 +311,9 @@ int FixPowderInsert::setmask()
 
 void FixPowderInsert::init()
 {
-  iregion = domain->find_region(idregion);
-  if (iregion == -1) error->all(FLERR, fmt::format("Fix powder/insert region ID {} does not exist", idregion));
-  Region *region = domain->regions[iregion];
+  insert_region = meltdem::lammps_api::region(domain, idregion);
+  if (!insert_region) error->all(FLERR, fmt::format("Fix powder/insert region ID {} does not exist", idregion));
+  Region *region = insert_region;
   // atoms created outside a fixed non-periodic boundary would be lost
   const double lo[3] = {region->extent_xlo, region->extent_ylo, region->extent_zlo};
   const double hi[3] = {region->extent_xhi, region->extent_yhi, region->extent_zhi};
@@ -405,7 +406,7 @@ void FixPowderInsert::end_of_step()
 // sphere (center x, radius r) lies inside the insertion region, gap from its surface
 int FixPowderInsert::region_fits(double *x, double r)
 {
-  Region *region = domain->regions[iregion];
+  Region *region = insert_region;
   if (!region->match(x[0], x[1], x[2])) return 0;
   return region->surface(x[0], x[1], x[2], r + gap) == 0;
 }
@@ -419,9 +420,8 @@ int FixPowderInsert::wall_overlap(double *x, double r)
     if (!w) continue;
     const int style = WallGranAccess::wallstyle_of(w);
     if (style == REGION) {
-      const int ir = domain->find_region(WallGranAccess::idregion_of(w));
-      if (ir < 0) continue;
-      Region *wr = domain->regions[ir];
+      Region *wr = meltdem::lammps_api::region(domain, WallGranAccess::idregion_of(w));
+      if (!wr) continue;
       // as fix wall/gran/region: the particle lives inside the wall region
       if (!wr->match(x[0], x[1], x[2])) return 1;
       if (wr->surface(x[0], x[1], x[2], reach) > 0) return 1;
@@ -452,13 +452,12 @@ void FixPowderInsert::pre_exchange()
   atom->nghost = 0;
   atom->avec->clear_bonus();
 
-  Region *region = domain->regions[iregion];
+  Region *region = insert_region;
   region->prematch();
   for (int i = 0; i < modify->nfix; i++) {
     auto *w = dynamic_cast<FixWallGran *>(modify->fix[i]);
     if (w && WallGranAccess::wallstyle_of(w) == REGION) {
-      const int ir = domain->find_region(WallGranAccess::idregion_of(w));
-      if (ir >= 0) domain->regions[ir]->prematch();
+      if (Region *wr = meltdem::lammps_api::region(domain, WallGranAccess::idregion_of(w))) wr->prematch();
     }
   }
 

@@ -50,9 +50,9 @@ class FixPowderInsert : public Fix {
   double new_temperature() const { return temp; }
 
  private:
-  bigint ninsert;  // N requested
-  int ntype;       // atom type of the new particles
-  int iregion;
+  bigint ninsert;               // N requested
+  int ntype;                    // atom type of the new particles
+  class Region *insert_region;  // the insertion region (looked up again at init)
   char *idregion;
   double density;
   int ratemode;  // ALL, RATE (particles/time) or MASSRATE (mass/time)

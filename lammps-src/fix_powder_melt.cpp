@@ -8,6 +8,7 @@
 
 #include "fix_powder_melt.h"
 
+#include "lammps_api.h"
 #include "atom.h"
 #include "atom_vec.h"
 #include "comm.h"
@@ -46,8 +47,8 @@ FixPowderMelt::FixPowderMelt(LAMMPS *lmp, int narg, char **arg) :
   // radius and mass change as particles melt: ghosts must receive them every step,
   // which atom_style sphere does only with its dynamic-radius flag (atom_style sphere 1)
   bool radvary = false;
-  if (atom->sphere_flag && atom->radius_flag && atom->rmass_flag && atom->avec->fields_comm) {
-    auto words = utils::split_words(atom->avec->fields_comm);
+  if (meltdem::lammps_api::sphere_style(atom)) {
+    const auto words = meltdem::lammps_api::comm_fields(atom->avec);
     bool r = false, m = false;
     for (auto &w : words) {
       if (w == "radius") r = true;

@@ -5,6 +5,7 @@
 
 #include "fix_wall_gran_region_powder.h"
 
+#include "lammps_api.h"
 #include "atom.h"
 #include "domain.h"
 #include "region.h"
@@ -39,9 +40,8 @@ void FixWallGranRegionPowder::post_force(int vflag)
   const int *mask = atom->mask;
   const double speed = coeffs.contact_speed(), step = update->dt;
   const double speed_factor = speed > 0.0 ? step * pow(speed, 0.2) : 0.0;
-  const int iregion = domain->find_region(idregion);
-  if (iregion < 0) return;  // the stock fix has already stopped on a missing region
-  Region *region = domain->regions[iregion];
+  Region *region = meltdem::lammps_api::region(domain, idregion);
+  if (!region) return;  // the stock fix has already stopped on a missing region
   const int dynamic = region->dynamic_check();
   double vwall[3] = {0.0, 0.0, 0.0};
   for (int i = 0; i < atom->nlocal; i++) {
