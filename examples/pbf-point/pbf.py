@@ -407,10 +407,8 @@ def run(case, np_=1, timeout=None):
     fc.run(["blockMesh"], case, "log.blockMesh")
     if np_ > 1:
         cc.decompose(case, np_, (np_, 1, 1))
-    cmd = [fc.solver()] if np_ == 1 else (["mpirun", "--allow-run-as-root", "--oversubscribe", "-np", str(np_)]
-                                          + [fc.solver(), "-parallel"])
-    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
-               PWD=os.path.abspath(case))
+    cmd = fc.solver_command(np_)
+    env = dict(os.environ, **fc.MPIRUN_ENV, PWD=os.path.abspath(case))
     with open(os.path.join(case, "log.meltdemFoam"), "w") as log:
         p = subprocess.Popen(cmd, cwd=case, stdout=log, stderr=subprocess.STDOUT, env=env)
         try:

@@ -507,6 +507,30 @@ def most_cells(case, base_cells):
     return int(max([base_cells] + [int(r["cellsAfter"]) for r in rows]))
 
 
+def decompose(case, np_, direction=(1, 2, 1)):
+    """decomposePar -force into np_ subdomains, method simple with n = direction."""
+    dictionary(case, "system/decomposeParDict", f"""numberOfSubdomains {np_};
+method simple;
+coeffs {{ n ({direction[0]} {direction[1]} {direction[2]}); }}
+""")
+    run(["decomposePar", "-force"], case, "log.decomposePar")
+
+
+MPIRUN_ENV = {"OMPI_ALLOW_RUN_AS_ROOT": "1", "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM": "1"}
+
+
+def solver_command(np_=1):
+    """The solver's command line: serial, or on np_ ranks with mpirun -parallel (env: MPIRUN_ENV)."""
+    if np_ == 1:
+        return [solver()]
+    return ["mpirun", "--allow-run-as-root", "--oversubscribe", "-np", str(np_), solver(), "-parallel"]
+
+
+def run_solver(case, np_=1, log="log.meltdemFoam", check=True):
+    """The solver serial or on np_ ranks (solver_command); its return code."""
+    return run(solver_command(np_), case, log, env=MPIRUN_ENV, check=check)
+
+
 def run_scene_case(case, np_, name, decomposition=None):
     """blockMesh, then meltdemFoam serial or on np_ ranks (decomposePar `simple` along x unless
     decomposition (nx ny nz) is given; reconstructed after), the wall time and return code booked in
@@ -515,18 +539,11 @@ def run_scene_case(case, np_, name, decomposition=None):
     import time
     t0 = time.time()
     run(["blockMesh"], case, "log.blockMesh")
-    if np_ == 1:
-        rc = run([solver()], case, "log.meltdemFoam", check=False)
-    else:
-        n = decomposition or (np_, 1, 1)
-        dictionary(case, "system/decomposeParDict",
-                   f"numberOfSubdomains {np_};\nmethod simple;\ncoeffs {{ n ({n[0]} {n[1]} {n[2]}); }}\n")
-        run(["decomposePar", "-force"], case, "log.decomposePar")
-        env = {"OMPI_ALLOW_RUN_AS_ROOT": "1", "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM": "1"}
-        rc = run(["mpirun", "--allow-run-as-root", "--oversubscribe", "-np", str(np_), solver(), "-parallel"],
-                 case, "log.meltdemFoam", env=env, check=False)
-        if rc == 0:
-            reconstruct(case)          # reconstructParMesh first on the times a refinement changed
+    if np_ > 1:
+        decompose(case, np_, decomposition or (np_, 1, 1))
+    rc = run_solver(case, np_, check=False)
+    if np_ > 1 and rc == 0:
+        reconstruct(case)          # reconstructParMesh first on the times a refinement changed
     wall = time.time() - t0
     path = os.path.join(case, "scene.json")
     meta = json.load(open(path))
