@@ -214,14 +214,8 @@ def peak_metal_temperature(case, meta):
     """Max over the written times of T where the cell holds metal (alpha >= 1/2), on the finest
     cells' lattice (nz, ny, nx): the fused zone is where it reached the middle of the melting range."""
     h = meta["dx"]
-    n = cells(meta, h)
-    tmax = np.full(n[::-1], T0)
     times = [d for d in fc.time_dirs(case) if float(d) > 0 and os.path.exists(os.path.join(case, d, "T"))]
-    for d in times:
-        T, a = (np.nan_to_num(fc.lattice_field(case, d, name, n, h, origin=(0.0, -meta["sub"], 0.0)), nan=T0)
-                for name in ("T", "alpha.metal"))
-        tmax = np.maximum(tmax, np.where(a >= 0.5, T, T0))
-    return tmax, times
+    return fc.peak_metal_temperature(case, times, cells(meta, h), h, (0.0, -meta["sub"], 0.0), T0), times
 
 
 def analyse(case, quiet=False):

@@ -329,11 +329,7 @@ def track_geometry(case, meta):
     h = meta["cell"]
     t_half = 0.5 * (TSOL + TLIQ)
     times = [d for d in fc.time_dirs(case) if float(d) > 0]
-    tmax = np.full((nz, ny, nx), T0)
-    for d in times:
-        a = lattice_field(case, d, "alpha.metal", meta)
-        T = lattice_field(case, d, "T", meta)
-        tmax = np.maximum(tmax, np.where(a >= 0.5, T, T0))
+    tmax = fc.peak_metal_temperature(case, times, (nx, ny, nz), h, (0.0, -meta["sub"], 0.0), T0)
     alpha_end = lattice_field(case, times[-1], "alpha.metal", meta)
     xc = (np.arange(nx) + 0.5) * h
     yc = -meta["sub"] + (np.arange(ny) + 0.5) * h

@@ -396,6 +396,17 @@ def lattice_field(case, time, name, n_fine, h, origin=(0.0, 0.0, 0.0)):
     return _fill_lattice((nz, ny, nx), lo.T, span, values)
 
 
+def peak_metal_temperature(case, times, n_fine, h, origin, floor):
+    """Max over the written times of T where the cell holds metal (alpha.metal >= 1/2), elsewhere
+    `floor`, on the finest cells' lattice (lattice_field), as an (nz, ny, nx) array."""
+    tmax = np.full(tuple(n_fine)[::-1], float(floor))
+    for d in times:
+        T, a = (np.nan_to_num(lattice_field(case, d, name, n_fine, h, origin), nan=floor)
+                for name in ("T", "alpha.metal"))
+        tmax = np.maximum(tmax, np.where(a >= 0.5, T, floor))
+    return tmax
+
+
 def _fill_lattice(shape, lo, span, values):
     """An array of `shape` (nz, ny, nx) where each cell's value fills the span^3 finest cells from
     its lowest one lo = (ix, iy, iz) (NaN where no cell is)."""
