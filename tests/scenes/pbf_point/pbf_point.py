@@ -93,7 +93,8 @@ def main():
     # (the full variant's test)
     short = (f"CI laser on 30 of the paper's 100 us: the peak ({s['peak_metal_T_K']:.0f} K at "
              f"{s['peak_T_time_s'] * 1e6:.0f} us) is still rising at switch-off")
-    ok = common_checks(TEST, case, s, stop, short=short)
+    # (the substrate does melt 10 um deep within the CI run: that row is a plain check)
+    ok = common_checks(TEST, case, s, stop)
     # Fuchs2022: the peak exceeds boiling and recoil opens a keyhole (depression of the surface)
     ok &= check_at_least(TEST, "peak metal temperature [K] vs boiling T_v (paper: exceeded)",
                          s["peak_metal_T_K"], pbf.T_BOIL, xfail=stopped(s, stop) or short)
