@@ -7,6 +7,12 @@
 #include "atom.h"
 #include "error.h"
 #include "fix_powder_dt.h"
+#include "granular_exact_damping.h"
+#if MELTDEM_LAMMPS_2025_API
+#include "gran_sub_mod_normal.h"
+#include "gran_sub_mod_tangential.h"
+#include "granular_model.h"
+#endif
 #include "lammps.h"
 #include "modify.h"
 #include "update.h"
@@ -29,6 +35,33 @@ bool is_wallstyle(const std::string &w)
 
 /* ---------------------------------------------------------------------- */
 
+#if MELTDEM_LAMMPS_2025_API
+void WallGranPowderCoeffs::apply_material(Granular_NS::GranularModel *model) const
+{
+  // the stock wall model takes 4/3 E/(2(1-nu^2)) of the particle alone: give it the E with
+  // which its formula yields 4/3 E* of particle and wall (nu kept)
+  if (material) {
+    const double nu = model->normal_model->coeffs[2];
+    model->normal_model->coeffs[0] = 0.75 * kn * 2.0 * (1.0 - nu * nu);
+    model->normal_model->coeffs_to_local();
+  }
+  // a NULL Mindlin stiffness: 8 G* of particle and wall, as the pair style's 8 G*
+  if (kt_from_material) {
+    model->tangential_model->coeffs[0] = kt;
+    model->tangential_model->coeffs_to_local();
+  }
+}
+
+void WallGranPowderCoeffs::apply_damping(Granular_NS::GranularModel *model, LAMMPS *lmp) const
+{
+  if (damping != DAMP_STOCK) meltdem_granular::use_tsuji_alpha(model, lmp, alpha);
+}
+
+double WallGranPowderCoeffs::stiffness(const Granular_NS::GranularModel *model) const
+{
+  return material ? kn : model->normal_model->coeffs[0];
+}
+#else
 void WallGranPowderCoeffs::apply_material(double *normal_coeffs, double *tangential_coeffs) const
 {
   // stock wall/gran sets 4/3 E/(2(1-nu)) here: neither E* of particle and wall nor
@@ -44,6 +77,7 @@ void WallGranPowderCoeffs::apply_damping(double *normal_coeffs) const
   // overwrite it with the exact alpha after each init()
   if (damping != DAMP_STOCK) normal_coeffs[1] = alpha;
 }
+#endif
 
 void WallGranPowderCoeffs::find_step_fix(LAMMPS *lmp)
 {
@@ -58,15 +92,16 @@ double WallGranPowderCoeffs::contact_speed() const
   return impact_speed;
 }
 
-double WallGranPowderCoeffs::damping_correction(const double *normal_coeffs, double delta, double separation_rate,
-                                                double reff, double meff, double dt, double speed_factor) const
+double WallGranPowderCoeffs::damping_correction(double kn_factor, double alpha_continuous, double delta,
+                                                double separation_rate, double reff, double meff, double dt,
+                                                double speed_factor) const
 {
   if (damping != DAMP_TSUJI_EXACT || e <= 0.0) return 0.0;
   // apart now and a step ago: no contact this step, no correction (most grains near a wall)
   if (delta <= 0.0 && delta + dt * separation_rate <= 0.0) return 0.0;
-  const double hertz_k = normal_coeffs[0] * std::sqrt(reff);
+  const double hertz_k = kn_factor * std::sqrt(reff);
   const double h = speed_factor > 0.0 ? contact_step(speed_factor, hertz_k, meff) : 0.0;
-  return meltdem::coupling::stepped_damping_correction(stepped.alpha(h), normal_coeffs[1], hertz_k, meff, delta,
+  return meltdem::coupling::stepped_damping_correction(stepped.alpha(h), alpha_continuous, hertz_k, meff, delta,
                                                        separation_rate, dt);
 }
 
@@ -81,6 +116,7 @@ WallGranPowderArgs::WallGranPowderArgs(LAMMPS *lmp, int narg, char **arg, bool r
     error->all(FLERR, "Fix {} requires units si (E is given in Pa)", style);
   if (strcmp(arg[3], "granular") != 0)
     error->all(FLERR, "Fix {} supports only the 'granular' interaction style, not '{}'", style, arg[3]);
+  if (!meltdem::lammps_api::sphere_style(lmp->atom)) error->all(FLERR, "Fix {} requires atom style sphere", style);
 
   words.assign(arg, arg + narg);
   enum { NONE, HOOKE, HERTZ, MATERIAL } model = NONE;
@@ -204,6 +240,15 @@ WallGranPowderArgs::WallGranPowderArgs(LAMMPS *lmp, int narg, char **arg, bool r
     coeffs.kt = 8.0 / inv_G;
   }
 
+#if MELTDEM_LAMMPS_2025_API
+  // the stock tsuji sub-model refuses dmt and jkr: the stock parser gets the velocity damping and
+  // apply_damping puts Tsuji's with the alpha in its place (as pair_style granular/powder)
+  bool cohesive = false;
+  for (auto &w : words) cohesive = cohesive || w == "dmt" || w == "jkr";
+  if (coeffs.damping != WallGranPowderCoeffs::DAMP_STOCK && cohesive)
+    for (size_t i = 4; i + 1 < words.size(); i++)
+      if (words[i] == "damping" && words[i + 1] == "tsuji") words[i + 1] = "velocity";
+#endif
   for (auto &s : words) argv.push_back(const_cast<char *>(s.c_str()));
 }
 
@@ -212,13 +257,20 @@ WallGranPowderArgs::WallGranPowderArgs(LAMMPS *lmp, int narg, char **arg, bool r
 FixWallGranPowder::FixWallGranPowder(LAMMPS *lmp, WallGranPowderArgs &&a) :
     FixWallGran(lmp, a.narg(), a.arg()), coeffs(a.coeffs)
 {
+#if MELTDEM_LAMMPS_2025_API
+  coeffs.apply_material(model);
+  coeffs.apply_damping(model, lmp);
+#else
   coeffs.apply_material(normal_coeffs, tangential_coeffs);
+#endif
 }
 
 void FixWallGranPowder::init()
 {
   FixWallGran::init();
+#if !MELTDEM_LAMMPS_2025_API
   coeffs.apply_damping(normal_coeffs);
+#endif
   coeffs.find_step_fix(lmp);
 }
 
@@ -272,8 +324,13 @@ void FixWallGranPowder::post_force(int vflag)
     const double reff = rwall == 0.0 ? radius[i] : radius[i] * rwall / (radius[i] + rwall);
     double meff = rmass[i];
     if (fix_rigid && mass_rigid[i] > 0.0) meff = mass_rigid[i];
+#if MELTDEM_LAMMPS_2025_API
+    const double kn = coeffs.stiffness(model), alpha_continuous = coeffs.alpha;
+#else
+    const double kn = normal_coeffs[0], alpha_continuous = normal_coeffs[1];
+#endif
     const double fn =
-        coeffs.damping_correction(normal_coeffs, radius[i] - r, rate, reff, meff, update->dt, speed_factor);
+        coeffs.damping_correction(kn, alpha_continuous, radius[i] - r, rate, reff, meff, update->dt, speed_factor);
     for (int k = 0; k < 3; k++) f[i][k] += n[k] * fn;
   }
 }

@@ -15,6 +15,7 @@ FixStyle(wall/gran/powder,FixWallGranPowder)
 #define MELTDEM_FIX_WALL_GRAN_POWDER_H
 
 #include "fix_wall_gran.h"
+#include "lammps_api.h"
 
 #include "meltdem/coupling/stepped_restitution.h"
 
@@ -38,9 +39,17 @@ struct WallGranPowderCoeffs {
   meltdem::coupling::SteppedAlphaTable stepped;  // its alpha at each contact step
   double impact_speed = 0.0;                     // keyword impact_speed (m/s), 0: none
 
+#if MELTDEM_LAMMPS_2025_API
+  // set the coefficients on the stock fix's granular model (2023+ API)
+  void apply_material(class Granular_NS::GranularModel *model) const;
+  void apply_damping(class Granular_NS::GranularModel *model, class LAMMPS *lmp) const;
+  // the Hertz stiffness factor and the continuous alpha the stepped damping corrects
+  double stiffness(const class Granular_NS::GranularModel *model) const;
+#else
   // copy the coefficients into a stock fix's protected arrays
   void apply_material(double *normal_coeffs, double *tangential_coeffs) const;
   void apply_damping(double *normal_coeffs) const;
+#endif
   class FixPowderDt *fix_dt = nullptr;  // the step's approach speed, when there is one (set in init)
   // find fix powder/dt (at each init: fixes come and go between runs)
   void find_step_fix(class LAMMPS *lmp);
@@ -50,8 +59,9 @@ struct WallGranPowderCoeffs {
   // the force 'damping tsuji' adds along the wall normal to the stock contact (see
   // stepped_restitution.h); 0 for the other damping forms. speed_factor: dt speed^(1/5) of
   // the step (0: no calibration speed)
-  double damping_correction(const double *normal_coeffs, double delta, double separation_rate, double reff, double meff,
-                            double dt, double speed_factor) const;
+  // kn: the Hertz stiffness factor (F = kn sqrt(R delta) delta), alpha_continuous: the stock alpha
+  double damping_correction(double kn, double alpha_continuous, double delta, double separation_rate, double reff,
+                            double meff, double dt, double speed_factor) const;
 
  private:
   mutable meltdem::coupling::ContactStepMemo contact_step;  // (its pow kept between contacts)

@@ -18,13 +18,20 @@ using namespace LAMMPS_NS;
 FixWallGranRegionPowder::FixWallGranRegionPowder(LAMMPS *lmp, WallGranPowderArgs &&a) :
     FixWallGranRegion(lmp, a.narg(), a.arg()), coeffs(a.coeffs)
 {
+#if MELTDEM_LAMMPS_2025_API
+  coeffs.apply_material(model);
+  coeffs.apply_damping(model, lmp);
+#else
   coeffs.apply_material(normal_coeffs, tangential_coeffs);
+#endif
 }
 
 void FixWallGranRegionPowder::init()
 {
   FixWallGranRegion::init();
+#if !MELTDEM_LAMMPS_2025_API
   coeffs.apply_damping(normal_coeffs);
+#endif
   coeffs.find_step_fix(lmp);
 }
 
@@ -43,6 +50,11 @@ void FixWallGranRegionPowder::post_force(int vflag)
   Region *region = meltdem::lammps_api::region(domain, idregion);
   if (!region) return;  // the stock fix has already stopped on a missing region
   const int dynamic = region->dynamic_check();
+#if MELTDEM_LAMMPS_2025_API
+  const double kn = coeffs.stiffness(model), alpha_continuous = coeffs.alpha;
+#else
+  const double kn = normal_coeffs[0], alpha_continuous = normal_coeffs[1];
+#endif
   double vwall[3] = {0.0, 0.0, 0.0};
   for (int i = 0; i < atom->nlocal; i++) {
     if (!(mask[i] & groupbit)) continue;
@@ -59,7 +71,8 @@ void FixWallGranRegionPowder::post_force(int vflag)
       const double reff = rwall == 0.0 ? radius[i] : radius[i] * rwall / (radius[i] + rwall);
       double meff = rmass[i];
       if (fix_rigid && mass_rigid[i] > 0.0) meff = mass_rigid[i];
-      const double fn = coeffs.damping_correction(normal_coeffs, radius[i] - r, rate, reff, meff, step, speed_factor);
+      const double fn =
+          coeffs.damping_correction(kn, alpha_continuous, radius[i] - r, rate, reff, meff, step, speed_factor);
       for (int k = 0; k < 3; k++) f[i][k] += n[k] * fn;
     }
   }

@@ -9,8 +9,14 @@
 #include "neigh_list.h"
 #include "fix_powder_dt.h"
 #include "fix_powder_insert.h"
+#include "granular_exact_damping.h"
+#include "lammps_api.h"
+#if MELTDEM_LAMMPS_2025_API
+#include "granular_model.h"
+#endif
 #include <mpi.h>
 #include "meltdem/coupling/hertz_restitution.h"
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <string>
@@ -18,10 +24,11 @@
 using namespace LAMMPS_NS;
 namespace mc = meltdem::coupling;
 
+namespace {
+#if !MELTDEM_LAMMPS_2025_API
 // PairGranular keeps its coefficient arrays private in this LAMMPS version; an explicit
 // template instantiation may name private members (C++ [temp.explicit]), which lets
 // the subclass read and set them without forking the stock style.
-namespace {
 template <typename Tag, typename Tag::type M> struct Rob {
   friend typename Tag::type get(Tag) { return M; }
 };
@@ -35,9 +42,11 @@ struct LimitDampingTag {
   friend type get(LimitDampingTag);
 };
 template struct Rob<LimitDampingTag, &PairGranular::limit_damping>;
+#endif
 
-// marks the restitution block this style appends to the stock pair section of a restart
-constexpr double RESTART_MAGIC = 20201.5;
+// marks the restitution block this style appends to the stock pair section of a restart (on the
+// 2023+ API the block also holds each type pair's alpha: the stock restart rebuilds the damping)
+constexpr double RESTART_MAGIC = MELTDEM_LAMMPS_2025_API ? 20250.5 : 20201.5;
 }  // namespace
 
 void PairGranularPowder::settings(int narg, char **arg)
@@ -70,6 +79,7 @@ void PairGranularPowder::set_exact(int i, int j, double e, double alpha_continuo
   const int n = (atom->ntypes + 1) * (atom->ntypes + 1);
   if ((int)exact_e.size() != n) {
     exact_e.assign(n, 0.0);
+    tsuji_alpha.assign(n, 0.0);
     alpha_tables.assign(n, mc::SteppedAlphaTable());
   }
   exact_e[slot(i, j)] = exact_e[slot(j, i)] = e;
@@ -132,14 +142,24 @@ void PairGranularPowder::coeff(int narg, char **arg)
     if (copy[i] == "tangential") history = history || next != "linear_nohistory";
     if (copy[i] == "rolling" || copy[i] == "twisting") history = history || next != "none";
   }
-  if (model == JKR_MODEL && !history)
+  if (model == JKR_MODEL && !history && !MELTDEM_LAMMPS_2025_API)
     error->all(FLERR, "Illegal pair_coeff command: jkr needs a tangential, rolling or twisting model with history "
                       "in this LAMMPS version (e.g. tangential mindlin NULL 1.0 0.5; linear_nohistory leaves no "
                       "slot for its contact flag)");
   if (mode == 1 && limited)
     error->all(FLERR, "Illegal pair_coeff command: damping tsuji applies its damping over the whole step and "
                       "cannot be combined with limit_damping (use tsuji/alpha)");
-  // with tsuji/alpha the stock parser still needs a valid e in hertz/material: use 0.5
+    // with tsuji/alpha the stock parser still needs a valid e in hertz/material: use 0.5
+#if MELTDEM_LAMMPS_2025_API
+  // the stock tsuji sub-model refuses a cohesive normal model (dmt, jkr) although its damping is
+  // well defined with them (the 29 Sep 2021 release allowed it): the stock parser gets the
+  // velocity damping, which it accepts, and use_tsuji_alpha below puts Tsuji's in its place
+  bool cohesive = false;
+  for (auto &w : copy) cohesive = cohesive || w == "dmt" || w == "jkr";
+  if (mode != 0 && cohesive)
+    for (size_t i = 2; i + 1 < copy.size(); i++)
+      if (copy[i] == "damping" && copy[i + 1] == "tsuji") copy[i + 1] = "velocity";
+#endif
   std::vector<char *> argv;
   for (auto &s : copy) argv.push_back(const_cast<char *>(s.c_str()));
   PairGranular::coeff((int)argv.size(), argv.data());
@@ -153,14 +173,28 @@ void PairGranularPowder::coeff(int narg, char **arg)
       if (setflag[i][j]) {
         set_exact(i, j, (mode == 1 && model == HERTZ_LIKE) ? value : 0.0, alpha);
         if (mode == 0) continue;
+#if MELTDEM_LAMMPS_2025_API
+        tsuji_alpha[slot(i, j)] = tsuji_alpha[slot(j, i)] = alpha;
+#else
         double ***nc = this->*get(NormalCoeffsTag());
         nc[i][j][1] = nc[j][i][1] = alpha;
+#endif
       }
+#if MELTDEM_LAMMPS_2025_API
+  // one model holds this command's type pairs: its damping gets the alpha
+  if (mode != 0) meltdem_granular::use_tsuji_alpha(models_list[types_indices[ilo][MAX(jlo, ilo)]], lmp, alpha);
+#endif
 }
 
 void PairGranularPowder::init_style()
 {
   if (strcmp(update->unit_style, "si") != 0) error->all(FLERR, "Pair granular/powder requires units si");
+  // stock mixing of unset i != j pairs is wrong in the 29 Sep 2021 release: refuse
+  for (int i = 1; i <= atom->ntypes; i++)
+    for (int j = i + 1; j <= atom->ntypes; j++)
+      if (setflag[i][j] == 0 && setflag[j][i] == 0)
+        error->all(FLERR, "Pair granular/powder: pair_coeff {} {} not set (mixed pairs must be given explicitly)", i,
+                   j);
   PairGranular::init_style();
   // the stock style sizes its cutoff from existing particles and fix pour/deposit only
   // (an empty box gives 0): count the particles fix powder/insert will insert as well
@@ -206,7 +240,9 @@ void PairGranularPowder::add_stepped_damping(int /*eflag*/, int /*vflag*/)
   const int *type = atom->type, *mask = atom->mask;
   const int nlocal = atom->nlocal;
   const int newton_pair = force->newton_pair;
+#if !MELTDEM_LAMMPS_2025_API
   double ***nc = this->*get(NormalCoeffsTag());
+#endif
   const double step = update->dt;
   const double speed = current_impact_speed();
   const double speed_factor = speed > 0.0 ? step * std::pow(speed, 0.2) : 0.0;
@@ -245,11 +281,17 @@ void PairGranularPowder::add_stepped_damping(int /*eflag*/, int /*vflag*/)
       if (mask[i] & freeze_group_bit) meff = mj;
       if (mask[j] & freeze_group_bit) meff = mi;
       const double reff = radius[i] * radius[j] / radsum;
-      const double hertz_k = nc[itype][jtype][0] * std::sqrt(reff);
+#if MELTDEM_LAMMPS_2025_API
+      const double kn = meltdem_granular::hertz_stiffness(models_list[types_indices[itype][jtype]]);
+      const double alpha_continuous = tsuji_alpha[slot(itype, jtype)];
+#else
+      const double kn = nc[itype][jtype][0], alpha_continuous = nc[itype][jtype][1];
+#endif
+      const double hertz_k = kn * std::sqrt(reff);
 
       const double h = speed > 0.0 ? contact_step(speed_factor, hertz_k, meff) : 0.0;
       const double alpha = alpha_tables[slot(itype, jtype)].alpha(h);
-      const double fn = mc::stepped_damping_correction(alpha, nc[itype][jtype][1], hertz_k, meff, delta, vnnr, step);
+      const double fn = mc::stepped_damping_correction(alpha, alpha_continuous, hertz_k, meff, delta, vnnr, step);
 
       const double fx = nx * fn, fy = ny * fn, fz = nz * fn;
       f[i][0] += fx;
@@ -276,20 +318,26 @@ void PairGranularPowder::write_restart(FILE *fp)
   fwrite(&RESTART_MAGIC, sizeof(double), 1, fp);
   fwrite(&impact_speed, sizeof(double), 1, fp);
   fwrite(block.data(), sizeof(double), n, fp);
+#if MELTDEM_LAMMPS_2025_API
+  std::vector<double> alphas(n, 0.0);
+  if ((int)tsuji_alpha.size() == n) alphas = tsuji_alpha;
+  fwrite(alphas.data(), sizeof(double), n, fp);
+#endif
 }
 
 void PairGranularPowder::read_restart(FILE *fp)
 {
   PairGranular::read_restart(fp);
   const int n = (atom->ntypes + 1) * (atom->ntypes + 1);
-  std::vector<double> block(n, 0.0);
+  std::vector<double> block(n, 0.0), alphas(n, 0.0);
   int found = 0;
   double speed = 0.0;
   if (comm->me == 0) {
     const long at = ftell(fp);
     double magic = 0.0;
     if (fread(&magic, sizeof(double), 1, fp) == 1 && magic == RESTART_MAGIC &&
-        fread(&speed, sizeof(double), 1, fp) == 1 && fread(block.data(), sizeof(double), n, fp) == (size_t)n)
+        fread(&speed, sizeof(double), 1, fp) == 1 && fread(block.data(), sizeof(double), n, fp) == (size_t)n &&
+        (!MELTDEM_LAMMPS_2025_API || fread(alphas.data(), sizeof(double), n, fp) == (size_t)n))
       found = 1;
     else
       fseek(fp, at, SEEK_SET);
@@ -301,4 +349,17 @@ void PairGranularPowder::read_restart(FILE *fp)
   impact_speed = speed;
   for (int i = 1; i <= atom->ntypes; i++)
     for (int j = i; j <= atom->ntypes; j++) set_exact(i, j, block[slot(i, j)], -1.0);
+#if MELTDEM_LAMMPS_2025_API
+  MPI_Bcast(alphas.data(), n, MPI_DOUBLE, 0, world);
+  tsuji_alpha = alphas;
+  std::vector<Granular_NS::GranularModel *> done;
+  for (int i = 1; i <= atom->ntypes; i++)
+    for (int j = i; j <= atom->ntypes; j++) {
+      if (!setflag[i][j] || tsuji_alpha[slot(i, j)] <= 0.0) continue;
+      Granular_NS::GranularModel *model = models_list[types_indices[i][j]];
+      if (std::find(done.begin(), done.end(), model) != done.end()) continue;
+      meltdem_granular::use_tsuji_alpha(model, lmp, tsuji_alpha[slot(i, j)]);
+      done.push_back(model);
+    }
+#endif
 }

@@ -17,9 +17,10 @@ shift
 top=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 root=${MELTDEM_DISTRO_CACHE:-$top/.deps/distro}/$release
 mirror=${MELTDEM_DEBIAN_MIRROR:-http://deb.debian.org/debian}
-# the tests that need no LAMMPS style: the coupling layer's unit tests and the physics terms of
-# meltdemFoam's models library
-SUBSET=(-R '^(coupling\.unit\.|foam\.term\.)')
+# the stated subset: the coupling layer's unit tests, meltdemFoam's physics terms and the dem,
+# lammps and extremes labels, less what does not pass on trixie yet (README, Supported versions)
+SUBSET=(-L 'dem|lammps|extremes|unit|term'
+        -E '^(dem\.restitution\.bad_input|dem\.powder_spread\.ci|foam\.thin_film_energy|extremes\.density_ratio)$')
 [ $# -gt 0 ] && SUBSET=("$@")
 
 say() { echo "meltdem test-distro: $*"; }

@@ -56,7 +56,10 @@ fix wall all wall/gran/powder granular {MODEL} zplane 0.0 NULL
 
 def on_sphere():
     rb = 0.1
-    text = sphere_box("f f f", "-0.11 0.11 -0.11 0.11 -0.11 0.11", 2e-6) + f"""pair_style granular/powder
+    # (no sorting and no binning: LAMMPS 2025 refuses the bins a 0.22 m box of 2 um cutoffs needs)
+    text = sphere_box("f f f", "-0.11 0.11 -0.11 0.11 -0.11 0.11", 2e-6) + f"""atom_modify sort 0 0.0
+neighbor 2e-6 nsq
+pair_style granular/powder
 pair_coeff * * {MODEL}
 create_atoms 1 single 0 0 {rb + R}
 create_atoms 1 single 0 0 0

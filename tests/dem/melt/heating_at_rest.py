@@ -22,7 +22,7 @@ set atom 1 diameter {d} density {rho}
 # Tmelt far above the gas: no melting
 fix m all powder/melt cp {cp} Tmelt 1e9 latent 2.7e5 temp {T0} ambient {Tf} {k} 1.2 1.8e-5 520 0 0 0
 timestep {dt!r}
-variable T equal f_m[1][1]
+variable T equal F_m[1][1]
 variable m0 equal mass[1]
 variable m0f format m0 %.17g
 print "MASS ${{m0f}}"

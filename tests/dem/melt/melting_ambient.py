@@ -53,8 +53,8 @@ timestep {dt}
 """ + melt + output
 if n == 1:
     # halfway: the per-atom outputs [1] temperature and [2] melted fraction
-    probe = """variable T equal f_m[1][1]
-variable f equal f_m[1][2]
+    probe = """variable T equal F_m[1][1]
+variable f equal F_m[1][2]
 variable mm equal mass[1]
 variable Tf format T %.17g
 variable ff format f %.17g

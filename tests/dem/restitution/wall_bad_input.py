@@ -57,8 +57,9 @@ cases = [
     ("plane wall in wall/gran/region/powder", "si", f"{WR} {HM} damping tsuji {TAN} zplane 0 NULL",
      "the wall style must be 'region ID'"),
     ("unknown region", "si", f"{WR} {HM} damping tsuji {TAN} region nowhere",
-     "Region ID for fix wall/gran/region does not exist"),
-    ("unknown keyword", "si", f"{W} {HM} damping tsuji {TAN} bogus 1 zplane 0 NULL", "Illegal fix wall/gran command"),
+     ("Region ID for fix wall/gran/region does not exist", "Region nowhere for fix wall/gran/region does not exist")),
+    ("unknown keyword", "si", f"{W} {HM} damping tsuji {TAN} bogus 1 zplane 0 NULL",
+     ("Illegal fix wall/gran command", "Unknown fix wall/gran keyword bogus")),
     ("wall in periodic dimension", "si", f"{W} {HM} damping tsuji {TAN} xplane 0 NULL",
      "Cannot use wall in periodic dimension"),
 ]

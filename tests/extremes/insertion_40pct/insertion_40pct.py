@@ -48,7 +48,8 @@ def lattice():
 
 def text(insert, steps, v0=0.0, box_below=0.0, every=1):
     """The lattice at rest (or moving down at v0) in region fill = [0, L]^3, then insert."""
-    atoms = "\n".join(f"create_atoms 1 single {x!r} {y!r} {z!r} units box" for x, y, z in lattice())
+    atoms = "\n".join(f"create_atoms 1 single {float(x)!r} {float(y)!r} {float(z)!r} units box"
+                      for x, y, z in lattice())
     return f"""units si
 atom_style sphere
 atom_modify map array
