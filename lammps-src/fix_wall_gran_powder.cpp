@@ -295,6 +295,11 @@ void FixWallGranPowder::post_force(int vflag)
   const double *radius = atom->radius, *rmass = atom->rmass;
   const int *mask = atom->mask;
   const double speed = coeffs.contact_speed(), speed_factor = speed > 0.0 ? update->dt * pow(speed, 0.2) : 0.0;
+#if MELTDEM_LAMMPS_2025_API
+  const double kn = coeffs.stiffness(model), alpha_continuous = coeffs.alpha;
+#else
+  const double kn = normal_coeffs[0], alpha_continuous = normal_coeffs[1];
+#endif
   for (int i = 0; i < atom->nlocal; i++) {
     if (!(mask[i] & groupbit)) continue;
     double d[3] = {0.0, 0.0, 0.0}, vw[3] = {vwall[0], vwall[1], vwall[2]}, rwall = 0.0, r;
@@ -324,11 +329,6 @@ void FixWallGranPowder::post_force(int vflag)
     const double reff = rwall == 0.0 ? radius[i] : radius[i] * rwall / (radius[i] + rwall);
     double meff = rmass[i];
     if (fix_rigid && mass_rigid[i] > 0.0) meff = mass_rigid[i];
-#if MELTDEM_LAMMPS_2025_API
-    const double kn = coeffs.stiffness(model), alpha_continuous = coeffs.alpha;
-#else
-    const double kn = normal_coeffs[0], alpha_continuous = normal_coeffs[1];
-#endif
     const double fn =
         coeffs.damping_correction(kn, alpha_continuous, radius[i] - r, rate, reff, meff, update->dt, speed_factor);
     for (int k = 0; k < 3; k++) f[i][k] += n[k] * fn;

@@ -261,9 +261,10 @@ def laser_budget(case):
 
 
 def laser_absorptivity(case, eta0):
-    """Per fluid step, as laser_budget: the absorptivity the step used (the linear model's, from the log)."""
+    """Per absorbed-power line of the solver log (laser_budget's rows are its first ones): the
+    absorptivity the step used (the linear model's)."""
     log = open(os.path.join(case, "log.meltdemFoam")).read()
-    return laser.step_absorptivity(log, eta0)[2][:len(cc.particles_csv(case))]
+    return laser.step_absorptivity(log, eta0)[2]
 
 
 def particle_events(tracks, t_end):
