@@ -1,9 +1,8 @@
 #pragma once
 // Registration of MeltDEM's LAMMPS styles into a running LAMMPS instance.
-// Debian's LAMMPS has no PLUGIN package, so the creators are inserted into the style maps
-// of Modify / Force directly; this must happen before the input script is read.
-#include <string>
-#include <vector>
+// Debian's LAMMPS (bookworm and trixie) has no PLUGIN package, so meltdem-lmp and meltdemFoam
+// insert the creators into the style maps of Modify / Force directly, before the input is
+// read; a LAMMPS built with PLUGIN loads the same styles from meltdemplugin.so instead.
 
 namespace LAMMPS_NS {
 class LAMMPS;
@@ -12,8 +11,5 @@ class LAMMPS;
 namespace meltdem {
 
 void register_lammps_styles(LAMMPS_NS::LAMMPS *lmp);
-
-// "fix powder/insert", "pair granular/powder", ...: what register_lammps_styles adds
-std::vector<std::string> registered_lammps_styles();
 
 }  // namespace meltdem

@@ -1,0 +1,126 @@
+#!/usr/bin/python3
+"""meltdemplugin.so: MeltDEM's styles as a LAMMPS plugin.
+
+lammps.plugin: the plugin loaded as "plugin load" loads it (meltdem-plugin-loader, a stock
+driver that links LAMMPS only) exports lammpsplugin_init, registers every project style and
+runs the head-on restitution input with results identical to meltdem-lmp's; it does not
+carry meltdem-lmp's post_create hook. lammps.plugin_load: "plugin load" in the installed
+lmp (MELTDEM_PLUGIN_LMP, default lmp), skipped (exit 77) when that lmp lacks PLUGIN."""
+import glob
+import os
+import re
+import subprocess
+import sys
+import tempfile
+
+from meltdem import paths
+from meltdem.testing.report import check_relative, report
+
+MODE = sys.argv[1] if len(sys.argv) > 1 else "loader"
+T = "lammps.plugin" if MODE == "loader" else "lammps.plugin_load"
+PLUGIN = os.path.join(paths.bin_dir(), "..", "lib", "meltdemplugin.so")
+HEAD_ON = os.path.join(paths.source_dir(), "tests", "dem", "restitution", "in.head_on")
+VARS = dict(v=1, style="granular/powder", e=0.5, damp="tsuji", dt=1e-10, n=3000)
+
+
+INSERT = """units si
+atom_style sphere 1
+comm_modify vel yes
+boundary p p f
+region box block 0 1e-3 0 1e-3 0 1e-3
+create_box 1 box
+pair_style granular/powder 1e-4
+pair_coeff * * hertz/material 2e11 0.5 0.3 tangential linear_nohistory 1.0 0.0 damping tsuji
+compute ov all powder/overlap
+fix ins all powder/insert 10 42 region box diam one 3e-5 dens 7900
+fix dt all powder/dt steps 20
+fix 1 all nve/sphere
+run 1
+print "INSERTED $(f_ins[1])"
+"""
+
+
+def launch(cmd, text, variables=None):
+    """Run an input text with cmd in a scratch folder; (returncode, output)."""
+    with tempfile.TemporaryDirectory() as d:
+        path = os.path.join(d, "in.test")
+        with open(path, "w") as f:
+            f.write(text)
+        args = ["-in", path, "-log", "none"]
+        for name, value in (variables or {}).items():
+            args += ["-var", name, str(value)]
+        p = subprocess.run(cmd + args, cwd=d, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
+                           timeout=300)
+        return p.returncode, p.stdout
+
+
+def head_on(cmd, prefix=""):
+    return launch(cmd, prefix + open(HEAD_ON).read(), VARS)
+
+
+def inserted(cmd, prefix=""):
+    rc, out = launch(cmd, prefix + INSERT)
+    hits = [w.split()[1] for w in out.splitlines() if w.startswith("INSERTED ")]
+    if rc != 0 or not hits:
+        print(out[-2000:])
+    return hits[0] if rc == 0 and hits else None
+
+
+def result(out):
+    lines = [w.split()[1] for w in out.splitlines() if w.startswith("RESULT ")]
+    return lines[0] if lines else None
+
+
+lmp_cmd = [paths.binary("meltdem-lmp")]
+rc, out = head_on(lmp_cmd)
+reference = result(out)
+if rc != 0 or reference is None:
+    print(out[-3000:])
+    sys.exit("meltdem-lmp failed on the head-on input")
+
+if MODE == "stock":
+    lmp = os.environ.get("MELTDEM_PLUGIN_LMP", "lmp")
+    help_text = subprocess.run([lmp, "-h"], stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True).stdout
+    packages = help_text.split("Installed packages:")[-1].split("List of")[0].split()
+    if "PLUGIN" not in packages:
+        print(f"SKIP: {lmp} was built without the PLUGIN package: 'plugin load' is not available "
+              "(Debian's LAMMPS on bookworm and trixie); lammps.plugin tests the plugin with a loader")
+        sys.exit(77)
+    prefix = f"plugin load {os.path.abspath(PLUGIN)}\n"
+    cmd = [lmp]
+    rc, out = head_on(cmd, prefix)
+else:
+    symbols = subprocess.run(["nm", "-D", "--defined-only", PLUGIN], stdout=subprocess.PIPE, text=True,
+                             check=True).stdout.split()
+    ok_symbols = "lammpsplugin_init" in symbols and "_ZN9LAMMPS_NS6LAMMPS11post_createEv" not in symbols
+    report(T, "exports lammpsplugin_init, defines no LAMMPS::post_create", ok_symbols, True, "exact",
+           "PASS" if ok_symbols else "FAIL")
+    if not ok_symbols:
+        sys.exit(1)
+    prefix = ""
+    cmd = [os.path.join(paths.bin_dir(), "..", "tests", "bin", "meltdem-plugin-loader"), PLUGIN]
+    rc, out = head_on(cmd)
+    registered = [int(w.split()[1]) for w in out.splitlines() if w.startswith("PLUGIN_STYLES ")]
+    headers = glob.glob(os.path.join(paths.source_dir(), "lammps-src", "*.h"))
+    styles = sum(1 for h in headers for line in open(h) if re.match(r"(Fix|Compute|Pair)Style\(", line))
+    n = registered[0] if registered else 0
+    report(T, "styles registered through lammpsplugin_init (as the style headers declare)", n, styles, "exact",
+           "PASS" if n == styles else "FAIL")
+    if n != styles:
+        print(out[-3000:])
+        sys.exit(1)
+measured = result(out)
+if rc != 0 or measured is None:
+    print(out[-3000:])
+    report(T, "head-on input with the plugin's granular/powder", "failed", "runs", "exact", "FAIL")
+    sys.exit(1)
+ok = measured == reference
+report(T, "e (prescribed 0.5) with the plugin's styles against meltdem-lmp (all digits)", measured, reference,
+       "exact", "PASS" if ok else "FAIL")
+ok &= check_relative(T, "e with the plugin's granular/powder at 2 m/s", float(measured), 0.5, 0.01)
+n_plugin, n_lmp = inserted(cmd, prefix), inserted(lmp_cmd)
+ok_insert = n_plugin is not None and n_plugin == n_lmp == "10"
+report(T, "grains inserted by the plugin's fix powder/insert (with compute powder/overlap, fix powder/dt)",
+       n_plugin, n_lmp, "exact", "PASS" if ok_insert else "FAIL")
+ok &= ok_insert
+sys.exit(0 if ok else 1)
