@@ -149,7 +149,6 @@ void PairGranularPowder::coeff(int narg, char **arg)
   if (mode == 1 && limited)
     error->all(FLERR, "Illegal pair_coeff command: damping tsuji applies its damping over the whole step and "
                       "cannot be combined with limit_damping (use tsuji/alpha)");
-    // with tsuji/alpha the stock parser still needs a valid e in hertz/material: use 0.5
 #if MELTDEM_LAMMPS_2025_API
   // the stock tsuji sub-model refuses a cohesive normal model (dmt, jkr) although its damping is
   // well defined with them (the 29 Sep 2021 release allowed it): the stock parser gets the
@@ -189,10 +188,11 @@ void PairGranularPowder::coeff(int narg, char **arg)
 void PairGranularPowder::init_style()
 {
   if (strcmp(update->unit_style, "si") != 0) error->all(FLERR, "Pair granular/powder requires units si");
-  // stock mixing of unset i != j pairs is wrong in the 29 Sep 2021 release: refuse
+  // stock mixing of unset i != j pairs is wrong in the 29 Sep 2021 release: refuse. Only
+  // setflag[i][j] with i <= j is set and cleared by LAMMPS; the lower triangle is not initialised
   for (int i = 1; i <= atom->ntypes; i++)
     for (int j = i + 1; j <= atom->ntypes; j++)
-      if (setflag[i][j] == 0 && setflag[j][i] == 0)
+      if (setflag[i][j] == 0)
         error->all(FLERR, "Pair granular/powder: pair_coeff {} {} not set (mixed pairs must be given explicitly)", i,
                    j);
   PairGranular::init_style();
@@ -213,9 +213,15 @@ void PairGranularPowder::init_style()
 double PairGranularPowder::init_one(int i, int j)
 {
   // stock mixing of unset i != j pairs is wrong in this LAMMPS version: refuse
-  if (setflag[i][j] == 0 && setflag[j][i] == 0)
+  if (setflag[MIN(i, j)][MAX(i, j)] == 0)
     error->all(FLERR, "Pair granular/powder: pair_coeff {} {} not set (mixed pairs must be given explicitly)", i, j);
-  return PairGranular::init_one(i, j);
+  const double cut = PairGranular::init_one(i, j);
+#if MELTDEM_LAMMPS_2025_API
+  const int n = (atom->ntypes + 1) * (atom->ntypes + 1);
+  if ((int)hertz_kn.size() != n) hertz_kn.assign(n, 0.0);
+  hertz_kn[slot(i, j)] = hertz_kn[slot(j, i)] = meltdem_granular::hertz_stiffness(models_list[types_indices[i][j]]);
+#endif
+  return cut;
 }
 
 double PairGranularPowder::current_impact_speed() const
@@ -282,7 +288,7 @@ void PairGranularPowder::add_stepped_damping(int /*eflag*/, int /*vflag*/)
       if (mask[j] & freeze_group_bit) meff = mi;
       const double reff = radius[i] * radius[j] / radsum;
 #if MELTDEM_LAMMPS_2025_API
-      const double kn = meltdem_granular::hertz_stiffness(models_list[types_indices[itype][jtype]]);
+      const double kn = hertz_kn[slot(itype, jtype)];
       const double alpha_continuous = tsuji_alpha[slot(itype, jtype)];
 #else
       const double kn = nc[itype][jtype][0], alpha_continuous = nc[itype][jtype][1];

@@ -139,7 +139,8 @@ def layer_bed(case, lx, out):
                 f"0 {lx!r}\n0 {float((y[idx] + r[idx]).max()) if len(idx) else 0.0!r}\n0 {lz!r}\n"
                 "ITEM: ATOMS id type radius mass x y z vx vy vz\n")
         for i, k in enumerate(idx, 1):
-            f.write(f"{i} 1 {r[k]!r} {d['mass'][k]!r} {x[k]!r} {y[k]!r} {z[k]!r} 0 0 0\n")
+            values = " ".join(repr(float(v)) for v in (r[k], d["mass"][k], x[k], y[k], z[k]))
+            f.write(f"{i} 1 {values} 0 0 0\n")
     return len(idx)
 
 

@@ -4,6 +4,7 @@
     rc, out = run(text, np=2)
 """
 import os
+import re
 import subprocess
 import tempfile
 
@@ -80,6 +81,16 @@ def thermo_runs(out, first="Step"):
 def thermo_rows(out, first="Step"):
     """All thermo rows of all runs, one list of dicts."""
     return [row for rows in thermo_runs(out, first) for row in rows]
+
+
+def lammps_version():
+    """The LAMMPS library's version as YYYYMMDD, from the banner of meltdem-lmp -h."""
+    months = "Jan Feb Mar Apr May Jun Jul Aug Sep Oct Nov Dec".split()
+    out = subprocess.run([lmp(), "-h"], stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True).stdout
+    m = re.search(r"Simulator - (\d+) ([A-Z][a-z][a-z]) (\d{4})", out)
+    if m and m.group(2) in months:
+        return int(m.group(3)) * 10000 + (months.index(m.group(2)) + 1) * 100 + int(m.group(1))
+    raise SystemExit("no LAMMPS version in the banner of meltdem-lmp -h")
 
 
 def check_errors(test, cases, cwd=None):
