@@ -28,7 +28,7 @@ class PairGranularPowder : public PairGranular {
   // 'damping tsuji' type pairs: the prescribed e (0: stock damping) and alpha(h) for it
   std::vector<double> exact_e;
   std::vector<double> tsuji_alpha;  // the alpha set per type pair (0: stock damping), the 2023+ API
-  std::vector<double> hertz_kn;  // per type pair, read from its normal sub-model in init_one (2023+ API)
+  std::vector<double> hertz_kn;     // per type pair, read from its normal sub-model in init_one (2023+ API)
   std::vector<meltdem::coupling::SteppedAlphaTable> alpha_tables;
   bool any_stepped = false;             // some type pair has 'damping tsuji' with the stepped damping
   double impact_speed = 0.0;            // pair_style keyword impact_speed (m/s), 0: none
