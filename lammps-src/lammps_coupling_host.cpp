@@ -71,11 +71,34 @@ FILE *errors_only_screen()
   return f;
 }
 
+// LAMMPS since 2023 stops on an input error by throwing (the 29 Sep 2021 build exits): either way
+// the coupled run ends with LAMMPS's message (printed to screen and log by LAMMPS on rank 0), the
+// command the coupling gave, and exit code 1, never an uncaught exception
+template <typename Call> void lammps_call(MPI_Comm comm, int me, const std::string &command, Call &&call)
+{
+  try {
+    call();
+  } catch (const std::exception &e) {
+    std::string what = e.what();
+    const bool from_lammps = what.rfind("ERROR", 0) == 0;
+    while (!what.empty() && what.back() == '\n') what.pop_back();
+    if (!from_lammps || me != 0) std::fprintf(stderr, "%s%s\n", from_lammps ? "" : "ERROR: ", what.c_str());
+    if (me == 0) std::fprintf(stderr, "Last command: %s\n", command.c_str());
+    std::fflush(stderr);
+    MPI_Abort(comm, 1);
+  }
+}
+
 }  // namespace
 
 struct LammpsCouplingHost::Impl {
   LAMMPS *lmp = nullptr;
+  MPI_Comm comm = MPI_COMM_NULL;
   FixPowderMelt *melt = nullptr;
+  void one(const std::string &command)
+  {
+    lammps_call(comm, me, command, [&] { lmp->input->one(command.c_str()); });
+  }
   bool needs_setup = true;
   int me = 0;
   // the input's commands (empty, with the reason, when it cannot be replayed), its output
@@ -95,6 +118,7 @@ LammpsCouplingHost::LammpsCouplingHost(MPI_Comm comm, const std::string &input_f
     impl_(std::make_unique<Impl>())
 {
   MPI_Comm_rank(comm, &impl_->me);
+  impl_->comm = comm;
   {
     // a directory opens as a stream but reads nothing, and an empty input would run as
     // units lj: both are reported as what they are
@@ -124,16 +148,16 @@ LammpsCouplingHost::LammpsCouplingHost(MPI_Comm comm, const std::string &input_f
     impl_->not_replayable = e.what();
   }
   if (restart_file.empty())
-    lmp->input->file(input_file.c_str());
+    lammps_call(comm, impl_->me, "the LAMMPS input " + input_file, [&] { lmp->input->file(input_file.c_str()); });
   else {
     const std::string dir = restart_file.substr(0, restart_file.find_last_of('/') + 1);
     impl_->replay = std::make_unique<InputReplay>(restart_file, read_output_sizes(dir + kOutputsFile));
     if (impl_->me == 0) impl_->replay->rewind_outputs();
     MPI_Barrier(comm);
-    lmp->input->one(("log " + log_file + " append").c_str());
+    impl_->one("log " + log_file + " append");
     for (const InputCommand &c : impl_->commands) {
       if (c.name() == "run") continue;  // the coupling drives the run
-      for (const std::string &line : impl_->replay->before_checkpoint(lmp, c)) lmp->input->one(line.c_str());
+      for (const std::string &line : impl_->replay->before_checkpoint(lmp, c)) impl_->one(line);
     }
     lmp->update->atime = restart_time;
     lmp->update->atimestep = lmp->update->ntimestep;
@@ -156,7 +180,7 @@ LammpsCouplingHost::LammpsCouplingHost(MPI_Comm comm, const std::string &input_f
   impl_->melt->hold_fluid({}, {}, -1);  // the coupling hands each interval's fluid in
   if (impl_->not_replayable.empty()) {
     impl_->outputs = output_files(lmp, impl_->commands);
-    lmp->input->one("fix meltdem_outputs all powder/checkpoint 0 NULL");
+    impl_->one("fix meltdem_outputs all powder/checkpoint 0 NULL");
     impl_->outputs_fix =
         dynamic_cast<FixPowderCheckpoint *>(lmp->modify->fix[lmp->modify->find_fix("meltdem_outputs")]);
     Impl *impl = impl_.get();
@@ -169,7 +193,7 @@ LammpsCouplingHost::LammpsCouplingHost(MPI_Comm comm, const std::string &input_f
   // initialise every style once (fix gravity sets its vector only in init)
   if (impl_->me == 0 && lmp->screen) fflush(lmp->screen);
   lmp->screen = errors_only_screen();
-  lmp->input->one("run 0 post no");
+  impl_->one("run 0 post no");
 }
 
 LammpsCouplingHost::~LammpsCouplingHost()
@@ -198,7 +222,7 @@ void LammpsCouplingHost::set_timestep(double dt)
 {
   char line[64];
   std::snprintf(line, sizeof line, "timestep %.17g", dt);
-  impl_->lmp->input->one(line);
+  impl_->one(line);
 }
 
 double LammpsCouplingHost::time() const
@@ -284,7 +308,7 @@ void LammpsCouplingHost::advance(int n, std::vector<mc::ExchangeRecord> &records
   impl_->melt->reset_interval();
   if (impl_->outputs_fix) impl_->outputs_fix->checkpoint_step = impl_->lmp->update->ntimestep + n;
   const std::string cmd = "run " + std::to_string(n) + (impl_->needs_setup ? " post no" : " pre no post no");
-  impl_->lmp->input->one(cmd.c_str());
+  impl_->one(cmd);
   impl_->needs_setup = false;
   impl_->melt->interval_records(records);
 }
@@ -300,7 +324,7 @@ std::int64_t LammpsCouplingHost::remove(const std::vector<std::int64_t> &tags)
 
 void LammpsCouplingHost::command(const std::string &line)
 {
-  impl_->lmp->input->one(line.c_str());
+  impl_->one(line);
   impl_->needs_setup = true;
 }
 

@@ -53,7 +53,7 @@ void Foam::meltdem::particleDeposition::deposit
     // the melt (mass, its enthalpy and momentum) goes by the volume weights at the end of the
     // step, where it is; the heat and impulse the particles took come from the cells they
     // sampled at its start (heat by what each holds beyond the particle's temperature,
-    // impulse by mass weights)
+    // impulse by mass weights), also for a particle that left the mesh during the step
     std::vector<mc::Amounts> amounts;
     std::vector<std::int64_t> takers;
     std::vector<int> locatedBy;
@@ -63,15 +63,15 @@ void Foam::meltdem::particleDeposition::deposit
     for (std::size_t i = 0; i < records.size(); ++i)
     {
         const mc::ExchangeRecord& r = records[i];
+        takers.push_back(r.id);
+        locatedBy.push_back(r.located_by);
+        heat.push_back(r.heat_absorbed);
+        impulse.push_back(r.impulse_from_fluid);
+        takerT.push_back(r.T);
         if (end.inside(i))
         {
             inside.push_back(r);
             amounts.push_back(mc::make_amounts(r.mass_out, r.enthalpy_out, r.momentum_out));
-            takers.push_back(r.id);
-            locatedBy.push_back(r.located_by);
-            heat.push_back(r.heat_absorbed);
-            impulse.push_back(r.impulse_from_fluid);
-            takerT.push_back(r.T);
         }
         else
         {

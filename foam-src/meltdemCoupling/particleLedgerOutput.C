@@ -113,13 +113,12 @@ void Foam::meltdem::particleLedgerOutput::book
     }
     for (const auto& r : lost)
     {
-        // outside the mesh nothing was deposited: its melt leaves with it
+        // outside the mesh nothing was deposited: its melt leaves with it; the heat and impulse
+        // it took during the step came from the cells it sampled at the start
         mc::ExchangeRecord kept(r);
         kept.mass_out = 0;
         kept.enthalpy_out = 0;
         kept.momentum_out = Eigen::Vector3d::Zero();
-        kept.heat_absorbed = 0;
-        kept.impulse_from_fluid = Eigen::Vector3d::Zero();
         L.book_lost(kept);
         L.book(mc::kLost, mc::make_amounts(r.mass_out, r.enthalpy_out, r.momentum_out));
     }

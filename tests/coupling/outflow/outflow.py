@@ -6,7 +6,8 @@ rides the gas down at 2 m/s from y = 0.5 mm and crosses the outlet after ~0.25 m
 coupling removes it from LAMMPS when its centre leaves the mesh and books its mass, enthalpy
 and momentum as lost (outflow). Checks: one particle booked lost; the lost mass equals its
 mass (1e-12); the whole system's mass and momentum balances (particles + continuum + lost)
-close per step (mass <= 1e-13, momentum <= 1e-7 of the momentum present); none left.
+close per step (mass <= 1e-13, enthalpy <= 1e-12, momentum <= 1e-7 of the momentum present),
+the heat it took from the 1500 K gas in the step it leaves included; none left.
 """
 import os
 import sys
@@ -37,6 +38,10 @@ def main():
     ok &= check_absolute(TEST, "particles left at the end", d["particles"][-1], 0, 0)
     steps = d[1:]
     ok &= check_at_most(TEST, "worst per-step system mass error", np.max(np.abs(steps["mass_system_error"])), 1e-13)
+    # the grain (300 K) takes heat from the 1500 K gas up to the step it leaves: that heat came
+    # from its cells, and leaves with it
+    ok &= check_at_most(TEST, "worst per-step system enthalpy error (the step it leaves included)",
+                        np.max(np.abs(steps["enthalpy_system_error"])), 1e-12)
     worst = max(np.max(np.abs(steps[f"mom_{c}_system_error"])) for c in "xyz")
     ok &= check_at_most(TEST, "worst per-step system momentum error", worst, 1e-7)
     return fc.finish(ok, work, keep)

@@ -23,7 +23,7 @@ import numpy as np
 
 from meltdem import paths
 from meltdem.case import foam as fc
-from meltdem.testing.report import check_at_most
+from meltdem.testing.report import check_at_most, report
 
 src = paths.source_dir()
 
@@ -57,11 +57,24 @@ def main():
     solver = paths.binary("stock-interFoam")
     if nproc > 1:
         fc.run(["decomposePar"], case, "log.decomposePar")
-        fc.run(["mpirun", "-np", str(nproc), solver, "-parallel"], case, "log.solver")
-        fc.run(["reconstructPar"], case, "log.reconstructPar")
-    else:
-        fc.run([solver], case, "log.solver")
     ok = True
+    # OpenFOAM builds whose OSHA1stream fails (Debian trixie's v1912) stop a stock solver with a
+    # functions entry at its first step: run it again with the project's digest preloaded
+    preload = None
+    for attempt in range(2):
+        env = {"LD_PRELOAD": preload} if preload and nproc == 1 else None
+        launcher = ["mpirun", "-np", str(nproc)] + (["-x", f"LD_PRELOAD={preload}"] if preload else [])
+        cmd = launcher + [solver, "-parallel"] if nproc > 1 else [solver]
+        rc = fc.run(cmd, case, "log.solver", env=env, check=preload is not None)
+        if rc == 0:
+            break
+        if 'error in IOstream "sha1"' not in open(os.path.join(case, "log.solver")).read():
+            fc.run(cmd, case, "log.solver", env=env)  # raises with the log's tail
+        preload = os.path.join(os.path.dirname(lib), "libmeltdemDictionaryDigest.so")
+    report(test, "stock interFoam ran with the functions entry (needed the digest preload: this OpenFOAM's "
+           "OSHA1stream bug; not asserted)", "preload" if preload else "as is", "as is", "none", True)
+    if nproc > 1:
+        fc.run(["reconstructPar"], case, "log.reconstructPar")
 
     bal = np.genfromtxt(os.path.join(case, "postProcessing", "balance", "0", "balance.csv"),
                         delimiter=",", names=True)
