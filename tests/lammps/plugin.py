@@ -23,21 +23,7 @@ HEAD_ON = os.path.join(paths.source_dir(), "tests", "dem", "restitution", "in.he
 VARS = dict(v=1, style="granular/powder", e=0.5, damp="tsuji", dt=1e-10, n=3000)
 
 
-INSERT = """units si
-atom_style sphere 1
-comm_modify vel yes
-boundary p p f
-region box block 0 1e-3 0 1e-3 0 1e-3
-create_box 1 box
-pair_style granular/powder 1e-4
-pair_coeff * * hertz/material 2e11 0.5 0.3 tangential linear_nohistory 1.0 0.0 damping tsuji
-compute ov all powder/overlap
-fix ins all powder/insert 10 42 region box diam one 3e-5 dens 7900
-fix dt all powder/dt steps 20
-fix 1 all nve/sphere
-run 1
-print "INSERTED $(f_ins[1])"
-"""
+INSERT = open(os.path.join(paths.source_dir(), "tests", "lammps", "in.project_styles")).read()
 
 
 def launch(cmd, text, variables=None):
