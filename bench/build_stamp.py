@@ -7,10 +7,13 @@ import time
 
 def build_stamp(root, bin_dir):
     """git commit of the sources and modification time of the meltdemFoam used"""
-    head = subprocess.run(["git", "-C", root, "rev-parse", "--short", "HEAD"],
-                          capture_output=True, text=True).stdout.strip()
-    dirty = subprocess.run(["git", "-C", root, "status", "--porcelain", "--untracked-files=no", "coupling",
-                            "foam-src", "lammps-src"], capture_output=True, text=True).stdout.strip()
+    def git(*args):
+        try:
+            return subprocess.run(["git", "-C", root] + list(args), capture_output=True, text=True).stdout.strip()
+        except FileNotFoundError:  # no git (a copied tree, a chroot without it)
+            return ""
+    head = git("rev-parse", "--short", "HEAD") or "(not a git checkout)"
+    dirty = git("status", "--porcelain", "--untracked-files=no", "coupling", "foam-src", "lammps-src")
     mtime = time.strftime("%Y-%m-%d %H:%M:%S UTC", time.gmtime(os.path.getmtime(os.path.join(bin_dir, "meltdemFoam"))))
     return (f"sources at the start {head}{' + uncommitted coupling changes' if dirty else ''}, "
             f"meltdemFoam built {mtime}")
