@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <mpi.h>
 #include <string>
+#include <vector>
 
 using namespace LAMMPS_NS;
 
@@ -26,12 +27,18 @@ extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
     return;
   }
   auto register_style = reinterpret_cast<lammpsplugin_regfunc>(regfunc);
-  for (const auto &style : meltdem::lammps_style_creators()) {
+  // LAMMPS keeps the info pointers for "plugin list": they live as long as the plugin
+  static std::vector<std::string> infos;
+  const auto &styles = meltdem::lammps_style_creators();
+  if (infos.empty())
+    for (const auto &style : styles) infos.push_back(std::string("MeltDEM ") + style.kind + " " + style.name);
+  for (std::size_t k = 0; k < styles.size(); ++k) {
+    const auto &style = styles[k];
     lammpsplugin_t plugin{};
     plugin.version = LAMMPS_VERSION;
     plugin.style = style.kind;
     plugin.name = style.name;
-    plugin.info = "MeltDEM powder style";
+    plugin.info = infos[k].c_str();
     plugin.author = "MeltDEM developers";
     if (style.pair)
       plugin.creator.v1 = reinterpret_cast<lammpsplugin_factory1 *>(style.pair);
