@@ -16,6 +16,7 @@ Fuchs2022's d_w = 2 r_w with r_w the 1/e^2 radius (sigma = r_w/2), i.e. laser { 
 Variant --switch-off: the laser goes off at t = 0.012 ms (Fuchs2022's second variant).
 """
 import argparse
+import functools
 import json
 import math
 import os
@@ -251,9 +252,22 @@ def pool_stats(case, dx, n):
     return np.array(rows)
 
 
+@functools.lru_cache(maxsize=2)
+def _read_text(path, mtime_ns, size):
+    with open(path) as f:
+        return f.read()
+
+
+def solver_log(case):
+    """The case's solver log, read once while it does not change (the analysis reads it twice)."""
+    path = os.path.join(case, "log.meltdemFoam")
+    st = os.stat(path)
+    return _read_text(path, st.st_mtime_ns, st.st_size)
+
+
 def laser_budget(case):
     """Per fluid step: time, continuum absorbed power (solver log), particles' absorbed power."""
-    log = open(os.path.join(case, "log.meltdemFoam")).read()
+    log = solver_log(case)
     cont = np.array([float(x) for x in re.findall(r"Laser: absorbed power (\S+) W", log)])
     p = cc.particles_csv(case)
     k = min(len(cont), len(p))
@@ -263,8 +277,7 @@ def laser_budget(case):
 def laser_absorptivity(case, eta0):
     """Per absorbed-power line of the solver log (laser_budget's rows are its first ones): the
     absorptivity the step used (the linear model's)."""
-    log = open(os.path.join(case, "log.meltdemFoam")).read()
-    return laser.step_absorptivity(log, eta0)[2]
+    return laser.step_absorptivity(solver_log(case), eta0)[2]
 
 
 def particle_events(tracks, t_end):
