@@ -12,6 +12,8 @@ function(meltdem_test_environment test)
     "WM_PROJECT_DIR=${MELTDEM_FOAM_PROJECT_DIR}"
     "OMPI_ALLOW_RUN_AS_ROOT=1" "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1"
     "OMPI_MCA_rmaps_base_oversubscribe=1"
+    # one node: no UCX probing and no singleton daemon (Open MPI 4 start-up 0.46 -> 0.09 s)
+    "OMPI_MCA_pml=ob1" "OMPI_MCA_ess_singleton_isolated=1"
     # (Open MPI 5's launcher, PRRTE, reads its own variable)
     "PRTE_MCA_rmaps_default_mapping_policy=:oversubscribe")
 endfunction()
