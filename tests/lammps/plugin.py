@@ -11,9 +11,9 @@ import os
 import re
 import subprocess
 import sys
-import tempfile
 
 from meltdem import paths
+from meltdem.testing.lammps_run import run
 from meltdem.testing.report import check_relative, report
 
 MODE = sys.argv[1] if len(sys.argv) > 1 else "loader"
@@ -26,26 +26,12 @@ VARS = dict(v=1, style="granular/powder", e=0.5, damp="tsuji", dt=1e-10, n=3000)
 INSERT = open(os.path.join(paths.source_dir(), "tests", "lammps", "in.project_styles")).read()
 
 
-def launch(cmd, text, variables=None):
-    """Run an input text with cmd in a scratch folder; (returncode, output)."""
-    with tempfile.TemporaryDirectory() as d:
-        path = os.path.join(d, "in.test")
-        with open(path, "w") as f:
-            f.write(text)
-        args = ["-in", path, "-log", "none"]
-        for name, value in (variables or {}).items():
-            args += ["-var", name, str(value)]
-        p = subprocess.run(cmd + args, cwd=d, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
-                           timeout=300)
-        return p.returncode, p.stdout
-
-
 def head_on(cmd, prefix=""):
-    return launch(cmd, prefix + open(HEAD_ON).read(), VARS)
+    return run(prefix + open(HEAD_ON).read(), check=False, variables=VARS, exe=cmd)
 
 
 def inserted(cmd, prefix=""):
-    rc, out = launch(cmd, prefix + INSERT)
+    rc, out = run(prefix + INSERT, check=False, exe=cmd)
     hits = [w.split()[1] for w in out.splitlines() if w.startswith("INSERTED ")]
     if rc != 0 or not hits:
         print(out[-2000:])

@@ -18,33 +18,39 @@ def lmp():
 
 
 def _launch(cmd, cwd, np, check, timeout):
-    """meltdem-lmp with its arguments cmd (on np ranks) in cwd; (returncode, stdout+stderr)."""
+    """The LAMMPS command cmd (a list, on np ranks) in cwd; (returncode, stdout+stderr)."""
     if np > 1:
         cmd = ["mpirun", "-np", str(np)] + cmd
     p = subprocess.run(cmd, cwd=cwd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
                        text=True, timeout=timeout)
     if check and p.returncode != 0:
         print(p.stdout[-4000:])
-        raise SystemExit(f"meltdem-lmp failed with exit code {p.returncode}")
+        raise SystemExit(f"{os.path.basename(cmd[0])} failed with exit code {p.returncode}")
     return p.returncode, p.stdout
 
 
-def run(text, np=1, check=True, cwd=None, timeout=300):
-    """Run an input (in a scratch folder, or in cwd); returns (returncode, stdout+stderr)."""
+def _var_args(variables):
+    """-var NAME VALUE for each item of variables."""
+    return [a for name, value in (variables or {}).items() for a in ("-var", name, str(value))]
+
+
+def run(text, np=1, check=True, cwd=None, timeout=300, variables=None, exe=None):
+    """Run an input text (in a scratch folder, or in cwd) with meltdem-lmp, or with exe (a
+    command list: another LAMMPS executable and its leading arguments); -var NAME VALUE for each
+    item of variables; returns (returncode, stdout+stderr)."""
     with tempfile.TemporaryDirectory() as scratch:
         d = cwd or scratch
         path = os.path.join(d, "in.test")
         with open(path, "w") as f:
             f.write(text)
-        return _launch([lmp(), "-in", path, "-log", "none", "-echo", "none"], d, np, check, timeout)
+        cmd = (exe or [lmp()]) + ["-in", path, "-log", "none", "-echo", "none"] + _var_args(variables)
+        return _launch(cmd, d, np, check, timeout)
 
 
 def run_file(path, variables=None, np=1, check=True, timeout=300):
     """Run an input file with -var NAME VALUE for each item of variables, in a scratch
     folder; returns (returncode, stdout+stderr)."""
-    cmd = [lmp(), "-in", os.path.abspath(path), "-log", "none"]
-    for name, value in (variables or {}).items():
-        cmd += ["-var", name, str(value)]
+    cmd = [lmp(), "-in", os.path.abspath(path), "-log", "none"] + _var_args(variables)
     with tempfile.TemporaryDirectory() as d:
         return _launch(cmd, d, np, check, timeout)
 
