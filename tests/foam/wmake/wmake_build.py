@@ -39,7 +39,7 @@ def allwmake(work, foam_dir, build_dir):
 set -e
 [ -x "$WM_PROJECT_DIR/platforms/tools/$WM_ARCH$WM_COMPILER/wmkdepend" ] || (cd "$WM_DIR/src" && ./Allmake)
 export FOAM_USER_LIBBIN={work}/lib FOAM_USER_APPBIN={work}/bin
-export MELTDEM_ROOT={SRC} MELTDEM_BUILD_DIR={build_dir} WM_NCOMPPROCS=1
+export MELTDEM_ROOT={SRC} MELTDEM_BUILD_DIR={build_dir} WM_NCOMPPROCS=2
 {work}/foam-src/Allwmake
 """
     with open(os.path.join(work, "log.Allwmake"), "w") as log:
