@@ -54,6 +54,7 @@ Foam::meltdem::particleCoupling::particleCoupling
     dict_(meltdemDict.optionalSubDict("particles")),
     model_(mc::DistributionModel::Neighbours),
     fixedSubSteps_(0),
+    warnedFixedStep_(false),
     thermal_(meltdemDict.subDict("physics").getOrDefault<bool>("energy", false)),
     oneWay_(!meltdemDict.subDict("physics").getOrDefault<bool>("flow", true)),
     distMesh_(mesh),
@@ -219,6 +220,29 @@ void Foam::meltdem::particleCoupling::subCycles
 }
 
 
+void Foam::meltdem::particleCoupling::fixedStepOverrun(const Time& runTime, const scalar step)
+{
+    // the step adjustTimeStep chose (maxCo, maxAlphaCo, maxDeltaT, the capillary limit) is
+    // runTime's until the sub-cycle sets it; only a fixed sub-cycle can run past it. The
+    // first step's is controlDict's deltaT, not a limit
+    const bool adjustable = runTime.controlDict().getOrDefault<bool>("adjustTimeStep", false)
+        && runTime.timeIndex() != runTime.startTimeIndex();
+    const scalar allowed = runTime.deltaTValue();
+    const scalar overrun = fixedSubSteps_ && adjustable && allowed > 0 ? step/allowed : 0;
+    bounds_->setFixedStepOverrun(overrun, fixedSubSteps_, step);
+    if (overrun > 1 + 1e-9 && !warnedFixedStep_)
+    {
+        WarningInFunction
+            << "demStepsPerFluidStep " << fixedSubSteps_ << " fixes the fluid step at " << step
+            << " s, " << overrun << " times the step maxCo, maxAlphaCo and maxDeltaT allow at t = "
+            << runTime.value() << " s: the flow runs past its Courant limit (a stop naming the "
+            << "temperature range says so again). Use demStepsPerFluidStep auto, or a smaller "
+            << "N. (Warned once per run.)" << endl;
+        warnedFixedStep_ = true;
+    }
+}
+
+
 void Foam::meltdem::particleCoupling::advance(Time& runTime, const fluidFields& f)
 {
     ::meltdem::LammpsCouplingHost& lammps = (*host_)();
@@ -249,6 +273,7 @@ void Foam::meltdem::particleCoupling::advance(Time& runTime, const fluidFields& 
     label n;
     scalar dtSub;
     subCycles(runTime, n, dtSub);
+    fixedStepOverrun(runTime, n*dtSub);
     std::vector<double> light;
     sampling_->shade(runTime, start, n*dtSub, light);
     bounds_->setHeated(sampling_->heated());

@@ -11,6 +11,9 @@ Foam::meltdem::temperatureBounds::temperatureBounds(const fvMesh& mesh, MPI_Comm
     Tlo_(0),
     Thi_(0),
     exchangeTime_(GREAT),
+    fixedStepOverrun_(0),
+    fixedStep_(0),
+    fixedSubSteps_(0),
     set_(false),
     heated_(false),
     warnedLongStep_(false)
@@ -126,7 +129,15 @@ void Foam::meltdem::temperatureBounds::check(const volScalarField::Internal& ent
                 ? ": the rest came from the continuum's own solve (flow, surface forces, "
                   "laser, the displacement by the melt's volume), which maxDeltaT and maxCo "
                   "limit, and whose convection of T energyControls maxThermalCo bounds"
-                : "")
-            << exit(FatalError);
+                : "");
+        if (fixedStepOverrun_ > 1 + 1e-9)
+        {
+            FatalError
+                << ". This fluid step was fixed by demStepsPerFluidStep " << fixedSubSteps_
+                << " at " << fixedStep_ << " s, " << fixedStepOverrun_ << " times the step "
+                << "maxCo, maxAlphaCo and maxDeltaT allowed: use demStepsPerFluidStep auto, "
+                << "or a smaller N";
+        }
+        FatalError << exit(FatalError);
     }
 }
