@@ -220,13 +220,17 @@ void Foam::meltdem::particleCoupling::subCycles
 }
 
 
-void Foam::meltdem::particleCoupling::fixedStepOverrun(const Time& runTime, const scalar step)
+void Foam::meltdem::particleCoupling::fixedStepOverrun
+(
+    const Time& runTime,
+    const bool adjustTimeStep,
+    const scalar step
+)
 {
     // the step adjustTimeStep chose (maxCo, maxAlphaCo, maxDeltaT, the capillary limit) is
     // runTime's until the sub-cycle sets it; only a fixed sub-cycle can run past it. The
     // first step's is controlDict's deltaT, not a limit
-    const bool adjustable = runTime.controlDict().getOrDefault<bool>("adjustTimeStep", false)
-        && runTime.timeIndex() != runTime.startTimeIndex();
+    const bool adjustable = adjustTimeStep && runTime.timeIndex() != runTime.startTimeIndex();
     const scalar allowed = runTime.deltaTValue();
     const scalar overrun = fixedSubSteps_ && adjustable && allowed > 0 ? step/allowed : 0;
     bounds_->setFixedStepOverrun(overrun, fixedSubSteps_, step);
@@ -243,7 +247,12 @@ void Foam::meltdem::particleCoupling::fixedStepOverrun(const Time& runTime, cons
 }
 
 
-void Foam::meltdem::particleCoupling::advance(Time& runTime, const fluidFields& f)
+void Foam::meltdem::particleCoupling::advance
+(
+    Time& runTime,
+    const bool adjustTimeStep,
+    const fluidFields& f
+)
 {
     ::meltdem::LammpsCouplingHost& lammps = (*host_)();
     const MPI_Comm comm = comm_->comm();
@@ -273,7 +282,7 @@ void Foam::meltdem::particleCoupling::advance(Time& runTime, const fluidFields& 
     label n;
     scalar dtSub;
     subCycles(runTime, n, dtSub);
-    fixedStepOverrun(runTime, n*dtSub);
+    fixedStepOverrun(runTime, adjustTimeStep, n*dtSub);
     std::vector<double> light;
     sampling_->shade(runTime, start, n*dtSub, light);
     bounds_->setHeated(sampling_->heated());

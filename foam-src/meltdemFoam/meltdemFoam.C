@@ -145,6 +145,7 @@ int main(int argc, char *argv[])
             particles->advance
             (
                 runTime,
+                adjustTimeStep,
                 {T, kappa, rho, muMixture, rhoCp, U, alpha1, liquidFraction}
             );
         }

@@ -30,11 +30,10 @@ import time
 from meltdem import paths
 from meltdem.case import coupled as cc
 from meltdem.case import foam as fc
+from meltdem.loader import load_module
 from meltdem.testing.cli import SRC, build_example, check_absolute, check_at_least, meltdem_command
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-
-import importlib.util  # noqa: E402
 
 T = "cli.reliability"
 ok = True
@@ -161,10 +160,7 @@ else:
         subprocess.run(["umount", mnt])
 
 # ------------------------------------------------------------- 3. lost grains, 4. momentum
-spec = importlib.util.spec_from_file_location("thesis_particle", os.path.join(SRC, "tests", "coupling",
-                                                                              "thesis_particle", "thesis_particle.py"))
-tp = importlib.util.module_from_spec(spec)
-spec.loader.exec_module(tp)
+tp = load_module(os.path.join(SRC, "tests", "coupling", "thesis_particle", "thesis_particle.py"), "thesis_particle")
 
 LX, LY, LZ = cc.CHANNEL["lx"], cc.CHANNEL["ly"], cc.CHANNEL["lz"]
 

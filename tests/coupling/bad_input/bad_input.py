@@ -17,7 +17,6 @@ With --np N every case is decomposed (mesh split along the channel) and run with
 the message must come the same way, and no rank may hang.
 usage: bad_input.py [--np N] [--keep] [--only NAME ...]
 """
-import importlib.util
 import os
 import re
 import signal
@@ -28,14 +27,12 @@ import tempfile
 from meltdem import paths
 from meltdem.case import coupled as cc
 from meltdem.case import foam as fc
+from meltdem.loader import load_module
 from meltdem.testing.report import check_at_most, report
 
 src = paths.source_dir()
 
-_spec = importlib.util.spec_from_file_location(
-    "thesis_particle", os.path.join(src, "tests", "coupling", "thesis_particle", "thesis_particle.py"))
-tp = importlib.util.module_from_spec(_spec)
-_spec.loader.exec_module(tp)
+tp = load_module(os.path.join(src, "tests", "coupling", "thesis_particle", "thesis_particle.py"), "thesis_particle")
 
 LX, LY, LZ = cc.CHANNEL["lx"], cc.CHANNEL["ly"], cc.CHANNEL["lz"]
 

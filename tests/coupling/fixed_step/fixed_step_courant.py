@@ -12,7 +12,6 @@ coupling):
   - demStepsPerFluidStep 10 with adjustTimeStep no: no warning (the user fixed the step).
 usage: fixed_step_courant.py [--keep]
 """
-import importlib.util
 import os
 import re
 import sys
@@ -20,13 +19,11 @@ import tempfile
 
 from meltdem.case import coupled as cc
 from meltdem.case import foam as fc
+from meltdem.loader import load_module
 from meltdem.testing.report import check_absolute
 
-_spec = importlib.util.spec_from_file_location(
-    "thesis_particle", os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))),
-                                    "thesis_particle", "thesis_particle.py"))
-tp = importlib.util.module_from_spec(_spec)
-_spec.loader.exec_module(tp)
+tp = load_module(os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))),
+                              "thesis_particle", "thesis_particle.py"), "thesis_particle")
 
 TEST = "coupling.fixed_step_courant"
 WARNING = "fixes the fluid step at"
@@ -47,6 +44,8 @@ def run(case, sub_cycles, adjustable=True):
     log = open(os.path.join(case, "log.meltdemFoam"), errors="replace").read()
     said = [ln for ln in log.splitlines() if WARNING in ln]
     done = "End" in log.splitlines()[-3:] or "\nEnd\n" in log[-200:]
+    if not done:
+        print(f"{case}: log.meltdemFoam ends\n" + "\n".join(log.splitlines()[-30:]))
     return said, done
 
 

@@ -18,7 +18,6 @@ Checks (measured / reference / tolerance, label coupling):
 usage: long_step.py [--keep]
 """
 import argparse
-import importlib.util
 import os
 import re
 import sys
@@ -28,12 +27,10 @@ import numpy as np
 
 from meltdem.case import coupled as cc
 from meltdem.case import foam as fc
+from meltdem.loader import load_module
 from meltdem.testing.report import check_relative
 
-_spec = importlib.util.spec_from_file_location(
-    "thesis_particle", os.path.join(os.path.dirname(os.path.abspath(__file__)), "thesis_particle.py"))
-tp = importlib.util.module_from_spec(_spec)
-_spec.loader.exec_module(tp)
+tp = load_module(os.path.join(os.path.dirname(os.path.abspath(__file__)), "thesis_particle.py"), "thesis_particle")
 
 
 def run(case, fluid_dt):

@@ -22,7 +22,6 @@ usage: fuzz.py N_DEM N_COUPLED SEED [--show]   (CI: 40 24 17; the long variant: 
 Counts of mutations tried and of each outcome are reported as validation rows; every failing
 mutation is printed with its seed, file and edit, so that it can be replayed."""
 import glob
-import importlib.util
 import json
 import os
 import random
@@ -33,6 +32,7 @@ import sys
 import tempfile
 
 from meltdem import paths
+from meltdem.loader import load_module
 from meltdem.testing.cli import meltdem_command
 from meltdem.testing.report import check_absolute
 
@@ -138,10 +138,7 @@ def dem_seed(work):
 
 
 def coupled_seeds(work):
-    spec = importlib.util.spec_from_file_location(
-        "thesis_particle", os.path.join(SRC, "tests", "coupling", "thesis_particle", "thesis_particle.py"))
-    tp = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(tp)
+    tp = load_module(os.path.join(SRC, "tests", "coupling", "thesis_particle", "thesis_particle.py"), "thesis_particle")
     from meltdem.case import coupled as cc
     channel = os.path.join(work, "channel_seed")
     cc.channel_case(channel, "centre", dict(d=tp.D, rho=tp.RHO_P, cp=tp.CP_P, Tm=tp.TM, L=tp.L, T0=0.0, y=17.6e-3),
