@@ -4,12 +4,21 @@ meltdemFoam + LAMMPS: 100 log-normal grains (16-32 um, poured by DEM) on a 40 um
 substrate, 160 x 140 x 160 um of 10 um cells (overlap distribution), 312 W laser (eta 0.5,
 d_w = 140 um) fixed at the centre, on for 30 us, off until 40 us; recoil and evaporation on.
 
+The bed is the scene's own pour, run once by LAMMPS 29 Sep 2021 and kept in bed-ci/ (its in.bed is
+the one pbf.py writes, so the scene reuses it): a pour is chaotic, and LAMMPS 4 Feb 2025 pours the
+same input into another bed (top 110.3 vs 108.8 um) whose substrate melts 9.73 um deep instead
+of 10.38 um. The melt checks see the kept bed on every release; this release's own pour is
+checked against it (bed top within half the smallest grain).
+
 References: Fuchs2022 has only qualitative statements for this case (a keyhole forms when the
 peak temperature exceeds boiling; grains are ejected from the melt-pool edge); exact ones:
 absorbed laser energy = eta P t_on (continuum + grains), grain mass = remaining + molten + lost,
 the ledger's per-step balances.
 """
+import filecmp
+import json
 import os
+import shutil
 import sys
 import tempfile
 
@@ -18,11 +27,12 @@ from meltdem.case import coupled as cc
 from meltdem.case import foam as fc
 from meltdem.loader import load_module
 from meltdem.paths import examples_dir
-from meltdem.testing.report import check_at_least, check_at_most, check_relative
+from meltdem.testing.report import check_absolute, check_at_least, check_at_most, check_relative
 
 SRC = paths.source_dir()
 
 pbf = load_module(os.path.join(examples_dir(), "pbf-point", "pbf.py"))
+KEPT_BED = os.path.join(os.path.dirname(os.path.abspath(__file__)), "bed-ci")
 
 TEST = "scenes.pbf-point"
 NO_KICK = ("; no recoil, and since 53da1c5 no grain is kicked out of freezing metal (the 4-27 grains "
@@ -35,10 +45,10 @@ NO_KICK = ("; no recoil, and since 53da1c5 no grain is kicked out of freezing me
 LIMIT_S = float(os.environ.get("MELTDEM_PBF_LIMIT_S", "420"))
 
 
-def run_case(case, variant):
-    """Build and run; a solver stop is reported (the analysis still runs on what was written).
-    Returns (summary, the solver's fatal message or None)."""
-    pbf.build(case, variant)
+def run_case(case, variant, bed_dir=None):
+    """Build (on the bed in bed_dir when given) and run; a solver stop is reported (the analysis
+    still runs on what was written). Returns (summary, the solver's fatal message or None)."""
+    pbf.build(case, variant, bed_dir=bed_dir)
     stop = None
     try:
         pbf.run(case, 1, LIMIT_S)
@@ -87,14 +97,25 @@ def main():
     keep = "--keep" in sys.argv
     work = tempfile.mkdtemp(prefix="meltdem-pbf-point-")
     case = os.path.join(work, "case")
-    s, stop = run_case(case, "point-ci")
+    bed = os.path.join(work, "bed")
+    shutil.copytree(KEPT_BED, bed)
+    s, stop = run_case(case, "point-ci", bed_dir=bed)
+    ok = check_absolute(TEST, "the run's bed is the kept pour bed-ci/ (1 = yes; else the scene's in.bed changed: "
+                        "pour it again into bed-ci/)",
+                        float(filecmp.cmp(os.path.join(bed, "bed.dump"), os.path.join(KEPT_BED, "bed.dump"),
+                                          shallow=False)), 1.0, 0)
+    own = os.path.join(work, "own_pour")
+    pbf.build(own, "point-ci")
+    own_top = json.load(open(os.path.join(own, "pbf.json")))["bed_top"]
+    ok &= check_absolute(TEST, "this LAMMPS release's pour: bed top vs the kept bed's [m] (within half the "
+                         "smallest grain)", own_top, s["bed_top_um"] * 1e-6, pbf.D_LO / 2)
     # the CI laser is on for 30 us, Fuchs2022's for 100 us: the peak is still rising at
     # switch-off, so the boiling point and the keyhole it opens come later than the CI run goes
     # (the full variant's test)
     short = (f"CI laser on 30 of the paper's 100 us: the peak ({s['peak_metal_T_K']:.0f} K at "
              f"{s['peak_T_time_s'] * 1e6:.0f} us) is still rising at switch-off")
     # (the substrate does melt 10 um deep within the CI run: that row is a plain check)
-    ok = common_checks(TEST, case, s, stop)
+    ok &= common_checks(TEST, case, s, stop)
     # Fuchs2022: the peak exceeds boiling and recoil opens a keyhole (depression of the surface)
     ok &= check_at_least(TEST, "peak metal temperature [K] vs boiling T_v (paper: exceeded)",
                          s["peak_metal_T_K"], pbf.T_BOIL, xfail=stopped(s, stop) or short)
