@@ -38,7 +38,8 @@ namespace mc = meltdem::coupling;
 
 FixPowderMelt::FixPowderMelt(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), drag_model(mc::DragModel::Thesis), T0(0.0), ambient_flag(0), provider(nullptr), in_setup(0),
-    solid_flag(0), solid_estar(0.0), solid_alpha(0.0), melt(nullptr), coef(nullptr), coef_tol(0.01), vector_dirty(1)
+    solid_flag(0), solid_estar(0.0), solid_alpha(0.0), interval_start(0), handover_d(0.0), melt(nullptr), coef(nullptr),
+    coef_tol(0.01), vector_dirty(1)
 {
   if (strcmp(update->unit_style, "si") != 0)
     error->all(FLERR, "Fix powder/melt requires units si (its heat and drag laws use SI values)");
@@ -127,6 +128,12 @@ FixPowderMelt::FixPowderMelt(LAMMPS *lmp, int narg, char **arg) :
         drag_model = mc::DragModel::SchillerNaumann;
       else
         error->all(FLERR, "Fix powder/melt drag model {} unknown (use thesis or schiller-naumann)", arg[iarg + 1]);
+      iarg += 2;
+    } else if (strcmp(arg[iarg], "handover") == 0) {
+      value("handover", 1);
+      handover_d = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+      if (!(handover_d >= 0.0))
+        error->all(FLERR, "Fix powder/melt handover diameter must be >= 0 m, not {}", handover_d);
       iarg += 2;
     } else if (strcmp(arg[iarg], "coefficient_tolerance") == 0) {
       value("coefficient_tolerance", 1);
@@ -239,6 +246,7 @@ void FixPowderMelt::hold_fluid(const std::vector<tagint> &tags, const std::vecto
 {
   if (tags.size() != states.size()) error->one(FLERR, "Fix powder/melt: hold_fluid needs one state per tag");
   held_flag = 1;
+  interval_start = 1;
   std::vector<int> state_of(std::size_t(atom->nlocal), -1);
   const std::vector<int> slot = local_slots(tags);
   for (std::size_t k = 0; k < tags.size(); ++k)
@@ -413,6 +421,8 @@ double FixPowderMelt::hold_coefficients(int i, const mc::FluidState &fluid, doub
     melt[i][S_OFFSET] = none.offset;
     melt[i][S_HAS] = none.has_plane ? 1.0 : 0.0;
     for (int k = 0; k < 3; k++) melt[i][S_PX + k] = none.point[k], melt[i][S_NX + k] = none.normal[k];
+    melt[i][S_HAS_MARK] = none.has_mark ? 1.0 : 0.0;
+    for (int k = 0; k < 3; k++) melt[i][S_MX + k] = none.mark[k];
   }
   mc::HeldExchangeInput in;
   in.model = drag_model;
@@ -531,10 +541,14 @@ void FixPowderMelt::post_force(int /*vflag*/)
       memory.has_plane = melt[i][S_HAS] != 0.0;
       memory.point = Eigen::Vector3d(melt[i][S_PX], melt[i][S_PY], melt[i][S_PZ]);
       memory.normal = Eigen::Vector3d(melt[i][S_NX], melt[i][S_NY], melt[i][S_NZ]);
-      const double offset = mc::update_solid_contact(memory, fluid.solid, xi, radius[i]);
+      memory.has_mark = melt[i][S_HAS_MARK] != 0.0;
+      memory.mark = Eigen::Vector3d(melt[i][S_MX], melt[i][S_MY], melt[i][S_MZ]);
+      const double offset = mc::update_solid_contact(memory, fluid.solid, xi, radius[i], interval_start != 0);
       melt[i][S_OFFSET] = memory.offset;
       melt[i][S_HAS] = memory.has_plane ? 1.0 : 0.0;
       for (int k = 0; k < 3; k++) melt[i][S_PX + k] = memory.point[k], melt[i][S_NX + k] = memory.normal[k];
+      melt[i][S_HAS_MARK] = memory.has_mark ? 1.0 : 0.0;
+      for (int k = 0; k < 3; k++) melt[i][S_MX + k] = memory.mark[k];
       const Eigen::Vector3d Fs =
           mc::solid_contact_force(fluid.solid, xi, radius[i], rmass[i], Eigen::Vector3d(v[i][0], v[i][1], v[i][2]),
                                   solid_estar, solid_alpha, offset);
@@ -545,6 +559,7 @@ void FixPowderMelt::post_force(int /*vflag*/)
       if (!in_setup) melt[i][I_DX + k] += F.drag[k] * dt;
     }
   }
+  if (!in_setup) interval_start = 0;
 }
 
 /* ----------------------------------------------------------------------
@@ -645,6 +660,14 @@ void FixPowderMelt::end_of_step()
       error->one(FLERR, "Fix powder/melt: atom {}: {}", atom->tag[i], e.what());
     }
 
+    if (!r.fully_molten && r.mass_melted > 0.0 && r.d < handover_d) {
+      // melted below the handover diameter: the rest goes to the continuum as it is (mass,
+      // enthalpy m h, momentum), as the melt of a grain that melted away
+      r.mass_melted += r.m;
+      r.enthalpy_out += r.m * r.h;
+      r.m = r.d = 0.0;
+      r.fully_molten = true;
+    }
     ledger[0].add_difference(m, r.m);  // exact: the totals telescope to the initial mass
     ledger[1].add(r.enthalpy_out);
     double momentum[3];
@@ -821,12 +844,15 @@ void FixPowderMelt::unpack_restart(int nlocal, int nth)
   int m = 0;
   for (int i = 0; i < nth; i++) m += static_cast<int>(extra[nlocal][m]);
   // restarts of earlier versions hold fewer (interval scratch) columns, which start at 0, and
-  // no held coefficients, which are then evaluated again
+  // no held coefficients, which are then evaluated again; those written before the
+  // solid-contact mark hold the columns before it, then coefficients that are not read
   const int stored = static_cast<int>(extra[nlocal][m]) - 1;
   m++;
-  for (int k = 0; k < NCOL; k++) melt[nlocal][k] = k < stored ? extra[nlocal][m++] : 0.0;
+  const bool current = stored == NCOL + NCOEF + NHELD;
+  const int columns = current ? NCOL : std::min(stored, static_cast<int>(NCOL_BEFORE_MARK));
+  for (int k = 0; k < NCOL; k++) melt[nlocal][k] = k < columns ? extra[nlocal][m++] : 0.0;
   coef[nlocal][C_STATE] = 0.0;
-  if (stored >= NCOL + NCOEF + NHELD) {
+  if (current) {
     for (int k = 0; k < NCOEF; k++) coef[nlocal][k] = extra[nlocal][m++];
     for (int k = 0; k < NHELD; k++) held[nlocal][k] = extra[nlocal][m++];
   }

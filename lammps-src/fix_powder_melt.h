@@ -98,7 +98,7 @@ class FixPowderMelt : public Fix {
   // fluid this interval). Implicit heat exchange: OWED, the heat the energy solve gave it, not
   // yet taken; COND, its conductance k Nu pi d at its last step [W/K]. S_*: the
   // particle's memory of its solid-metal contact (mc::SolidContactMemory), kept across
-  // intervals
+  // intervals (S_HAS_MARK, S_M*: its centre at the first step of the last interval)
   enum {
     TEMP,
     FRAC,
@@ -130,8 +130,14 @@ class FixPowderMelt : public Fix {
     P_T,
     OWED,
     COND,
+    S_HAS_MARK,
+    S_MX,
+    S_MY,
+    S_MZ,
     NCOL
   };
+  // the columns before the solid-contact mark: restarts written before it hold these
+  static constexpr int NCOL_BEFORE_MARK = S_HAS_MARK;
   std::vector<meltdem::coupling::ExchangeRecord> finished;  // deleted this interval
   meltdem::coupling::ExchangeRecord record(int i) const;
   void records(std::vector<meltdem::coupling::ExchangeRecord> &out, bool with_finished) const;
@@ -151,6 +157,8 @@ class FixPowderMelt : public Fix {
   int in_setup;
   int solid_flag;  // solid_metal keyword: the continuum's solid metal is a wall
   double solid_estar, solid_alpha;
+  int interval_start;  // set by hold_fluid: the next steps' forces are the interval's first
+  double handover_d;   // keyword handover: a grain melting below this diameter goes to the continuum whole
 
   // per-atom fluid held for the interval (hold_fluid): HELD_SET 1 when held, HELD_BY the rank
   // that located it, then the packed FluidState

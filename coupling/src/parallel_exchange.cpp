@@ -458,46 +458,64 @@ void ParallelExchange::local_weights(std::size_t i, std::vector<CellWeight> &out
   for (std::size_t k = start_[v]; k < start_[v + 1]; ++k) out.push_back({cells_[k], weights_[k]});
 }
 
-void ParallelExchange::nearest_solid(const double *solid_fraction, double reach, std::vector<SolidSurface> &out) const
+void ParallelExchange::nearest_solid(const double *solid_fraction, double reach, std::vector<SolidSurface> &out,
+                                     const double *was_solid_fraction,
+                                     const std::vector<Eigen::Vector3d> *velocity) const
 {
-  // the spheres grown by the reach go to the ranks whose cells they reach
+  // the spheres grown by the reach go to the ranks whose cells they reach, with their velocity
   Routing routing;
   std::vector<ParticleShape> visitors;
   route(local_, reach, routing, visitors);
-  constexpr int kPack = 8;  // present, distance, point, normal
+  std::vector<double> v_local(3 * local_.size(), 0.0), v_visitor;
+  if (velocity)
+    for (std::size_t i = 0; i < local_.size(); ++i)
+      for (int a = 0; a < 3; ++a) v_local[3 * i + a] = velocity->at(i)[a];
+  forward(routing, v_local, 3, v_visitor);
+  constexpr int kPack = 10;  // present, distance, point, normal, fresh, approached
   std::vector<double> found(kPack * visitors.size(), 0.0);
   std::vector<long> cells;
   std::vector<Eigen::Vector3d> lo, hi;
+  std::vector<char> was_solid;
   for (std::size_t v = 0; v < visitors.size(); ++v) {
     cells.clear();
     mesh_.cells_in_sphere(visitors[v].x, visitors[v].radius + reach, cells);
     lo.clear();
     hi.clear();
+    was_solid.clear();
     for (long c : cells) {
       if (!(solid_fraction[c] >= 0.5)) continue;
       Eigen::Vector3d l, h;
       mesh_.cell_bounds(c, l, h);
       lo.push_back(l);
       hi.push_back(h);
+      if (was_solid_fraction) was_solid.push_back(was_solid_fraction[c] >= 0.5);
     }
-    const SolidSurface s = nearest_solid_surface(visitors[v].x, lo, hi);
+    const Eigen::Vector3d vel(v_visitor[3 * v], v_visitor[3 * v + 1], v_visitor[3 * v + 2]);
+    const SolidSurface s = nearest_solid_surface(visitors[v].x, lo, hi, was_solid, vel);
     if (!s.present) continue;
     double *q = &found[kPack * v];
     q[0] = 1.0, q[1] = s.distance;
     for (int a = 0; a < 3; ++a) q[2 + a] = s.point[a], q[5 + a] = s.normal[a];
+    q[8] = s.fresh ? 1.0 : 0.0;
+    q[9] = s.approached ? 1.0 : 0.0;
   }
   std::vector<double> rows;
   backward(routing, found, kPack, rows);
-  // the rank with the nearest surface provides it (rows come in rank order: lowest on ties)
+  // the rank with the nearest (approached) surface provides it (rows come in rank order:
+  // lowest on ties)
   out.assign(local_.size(), SolidSurface());
   for (std::size_t j = 0; j < routing.send_index.size(); ++j) {
     const double *q = &rows[kPack * j];
     SolidSurface &s = out[routing.send_index[j]];
-    if (q[0] == 0.0 || (s.present && !(q[1] < s.distance))) continue;
+    const bool approached = q[9] != 0.0;
+    if (q[0] == 0.0 || (s.present && (s.approached && !approached))) continue;
+    if (s.present && s.approached == approached && !(q[1] < s.distance)) continue;
+    s.approached = approached;
     s.present = true;
     s.distance = q[1];
     s.point = Eigen::Vector3d(q[2], q[3], q[4]);
     s.normal = Eigen::Vector3d(q[5], q[6], q[7]);
+    s.fresh = q[8] != 0.0;
   }
 }
 

@@ -7,31 +7,34 @@
 namespace meltdem::coupling {
 
 SolidSurface nearest_solid_surface(const Eigen::Vector3d &c, const std::vector<Eigen::Vector3d> &lo,
-                                   const std::vector<Eigen::Vector3d> &hi)
+                                   const std::vector<Eigen::Vector3d> &hi, const std::vector<char> &was_solid,
+                                   const Eigen::Vector3d &v)
 {
   SolidSurface best;
   best.distance = std::numeric_limits<double>::infinity();
+  const double speed = v.norm();
   for (std::size_t i = 0; i < lo.size(); ++i) {
+    SolidSurface box;
+    box.present = true;
     const Eigen::Vector3d p = c.cwiseMax(lo[i]).cwiseMin(hi[i]);
-    const double d = (c - p).norm();
-    if (d < best.distance) {
-      best.present = true;
-      best.distance = d;
-      best.point = p;
-      if (d > 0.0) {
-        best.normal = (c - p) / d;
-      } else {  // centre inside the solid: out through the nearest face
-        double nearest = std::numeric_limits<double>::infinity();
-        for (int a = 0; a < 3; ++a) {
-          const double down = c[a] - lo[i][a], up = hi[i][a] - c[a];
-          if (down < nearest)
-            nearest = down, best.normal = -Eigen::Vector3d::Unit(a), best.point = c, best.point[a] = lo[i][a];
-          if (up < nearest)
-            nearest = up, best.normal = Eigen::Vector3d::Unit(a), best.point = c, best.point[a] = hi[i][a];
-        }
-        best.distance = -nearest;
+    box.distance = (c - p).norm();
+    box.point = p;
+    if (box.distance > 0.0) {
+      box.normal = (c - p) / box.distance;
+    } else {  // centre inside the solid: out through the nearest face
+      double nearest = std::numeric_limits<double>::infinity();
+      for (int a = 0; a < 3; ++a) {
+        const double down = c[a] - lo[i][a], up = hi[i][a] - c[a];
+        if (down < nearest)
+          nearest = down, box.normal = -Eigen::Vector3d::Unit(a), box.point = c, box.point[a] = lo[i][a];
+        if (up < nearest) nearest = up, box.normal = Eigen::Vector3d::Unit(a), box.point = c, box.point[a] = hi[i][a];
       }
+      box.distance = -nearest;
     }
+    box.fresh = was_solid.empty() || !was_solid[i];
+    box.approached = speed > 0.0 && v.dot(box.normal) < -kApproachShare * speed;
+    if ((box.approached && !best.approached) || (box.approached == best.approached && box.distance < best.distance))
+      best = box;
   }
   return best;
 }
@@ -47,7 +50,8 @@ Eigen::Vector3d solid_contact_force(const SolidSurface &s, const Eigen::Vector3d
   return Fn * s.normal;
 }
 
-double update_solid_contact(SolidContactMemory &m, const SolidSurface &s, const Eigen::Vector3d &x, double R)
+double update_solid_contact(SolidContactMemory &m, const SolidSurface &s, const Eigen::Vector3d &x, double R,
+                            bool interval_start)
 {
   if (!s.present) {
     m = SolidContactMemory();
@@ -58,12 +62,16 @@ double update_solid_contact(SolidContactMemory &m, const SolidSurface &s, const 
     // the surface changed: what it overlaps now beyond what the old one overlapped at the
     // same position came with the surface, not with the particle's motion
     const double before = m.has_plane ? std::max(0.0, R - (x - m.point).dot(m.normal)) : 0.0;
-    m.offset += std::max(0.0, delta - before);
+    double brought = std::max(0.0, delta - before);
+    // old solid: at most the overlap the particle had with it at the mark
+    if (!s.fresh && m.has_mark) brought = std::min(brought, std::max(0.0, R - (m.mark - s.point).dot(s.normal)));
+    m.offset += brought;
     m.has_plane = true;
     m.point = s.point;
     m.normal = s.normal;
   }
   m.offset = std::clamp(m.offset, 0.0, std::max(delta, 0.0));
+  if (interval_start) m.has_mark = true, m.mark = x;
   return m.offset;
 }
 

@@ -119,3 +119,70 @@ TEST(SolidMetalContact, ApproachingGrainBouncesAsWithoutMemory)
   meltdem::testing::expect_relative("solid metal contact with memory: rebound / impact speed, e = 0.5", v.y() / 2.0, e,
                                     0.01);
 }
+
+TEST(SolidMetalContact, GrainMovingIntoOldSolidWhileAnotherIsNearestIsPushed)
+{
+  // a falling grain beside a wall of solid metal (the nearest surface over one coupling
+  // interval) moves 0.2 R into the floor, solid for as long: when the floor becomes the
+  // nearest, that overlap is the grain's own and pushes as Hertz does. Had the floor frozen
+  // in that interval (fresh), the overlap came with it (no push).
+  const double R = 10e-6, m = 7800 * 4.0 / 3.0 * M_PI * R * R * R, E = 1.1e11, alpha = alpha_for_restitution(0.5);
+  const Eigen::Vector3d v(0, -1.0, 0);
+  SolidSurface wall;  // x = -1.05 R, facing +x
+  wall.present = true, wall.normal = Eigen::Vector3d::UnitX(), wall.point = Eigen::Vector3d(-1.05 * R, 0, 0);
+  wall.fresh = false;
+  SolidSurface floor = plane(0.0);
+  const Eigen::Vector3d above(0, 1.5 * R, 0), in(0, 0.8 * R, 0);
+  for (const bool fresh : {false, true}) {
+    SolidContactMemory memory;
+    update_solid_contact(memory, wall, above, R, true);  // the interval's first step, the mark
+    update_solid_contact(memory, wall, in, R);           // the interval's last step
+    floor.fresh = fresh;
+    const double off = update_solid_contact(memory, floor, in, R, true);
+    const double F = solid_contact_force(floor, in, R, m, v, E, alpha, off).norm();
+    if (fresh) {
+      EXPECT_NEAR(off, 0.2 * R, 1e-18);
+      EXPECT_EQ(F, 0.0);
+    } else {
+      meltdem::testing::expect_relative(
+          "solid metal contact: force of 0.2 R made by moving into old solid while a wall was nearest", F,
+          solid_contact_force(floor, in, R, m, v, E, alpha).norm(), 1e-12);
+    }
+  }
+}
+
+TEST(SolidMetalContact, EngulfedGrainMeetingOldSolidGivesNoKick)
+{
+  // a grain the melt froze around (offset 0.8 R) rests; at the next interval the staircase
+  // switches to another face, solid since the freeze, that overlaps it as much as at the
+  // mark: no force
+  const double R = 8e-6, m = 7430 * 4.0 / 3.0 * M_PI * R * R * R, E = 1.1e11, alpha = alpha_for_restitution(0.5);
+  const Eigen::Vector3d x(0, R, 0), v = Eigen::Vector3d::Zero();
+  SolidContactMemory memory;
+  update_solid_contact(memory, plane(0.8 * R), x, R, true);
+  SolidSurface side;
+  side.present = true, side.fresh = false;
+  side.normal = Eigen::Vector3d::UnitX(), side.point = Eigen::Vector3d(0.7 * R, R, 0);
+  const double off = update_solid_contact(memory, side, x, R, true);
+  meltdem::testing::expect_absolute(
+      "solid metal contact: force on an engulfed grain when the nearest face switches [N]",
+      solid_contact_force(side, x, R, m, v, E, alpha, off).norm(), 0.0, 0.0);
+}
+
+TEST(SolidMetalContact, FallingGrainIsHandedTheFloorItApproaches)
+{
+  // a grain falls at 7 m/s and drifts 7 m/s in +x over a solid floor (z < 0), its centre on
+  // the face of a cell beside it that froze (y > 0) and past a solid cell behind it (x < 0):
+  // the surfaces it slides along or leaves are nearer, the floor is the one it approaches
+  const std::vector<Eigen::Vector3d> lo{{-1, -1, -1}, {-1, 0, 0.2}, {-1, -1, 0}},
+      hi{{1, 1, 0}, {1, 1, 1}, {-0.2, 1, 1}};
+  const Eigen::Vector3d c(0, 0, 0.5), v(7, 0, -7);
+  const SolidSurface at_rest = nearest_solid_surface(c, lo, hi);
+  EXPECT_NEAR(at_rest.distance, 0.0, 1e-15);  // without a velocity: the face it is on
+  const SolidSurface s = nearest_solid_surface(c, lo, hi, {}, v);
+  ASSERT_TRUE(s.present);
+  EXPECT_TRUE(s.approached);
+  EXPECT_NEAR(s.normal.z(), 1.0, 1e-15);
+  meltdem::testing::expect_absolute(
+      "solid metal contact: distance to the floor a falling grain approaches (one cell 1)", s.distance, 0.5, 1e-15);
+}

@@ -277,7 +277,9 @@ timestep        {dt!r}
 fix             integrate grains nve/sphere
 fix             gravity grains gravity {G!r} vector 0 0 -1
 fix             symmetry grains wall/reflect ylo 0.0
-fix             melt all powder/melt cp {METAL['cp']!r} Tmelt {T_MELT_PARTICLE!r} latent {METAL['L']!r} temp {T0!r} solid_metal {a.estar!r} {a.restitution!r}
+# a grain melted below half the smallest inserted one would have fewer than 5 steps per contact
+# at this step: what is left of it goes to the melt (fix powder/melt handover)
+fix             melt all powder/melt cp {METAL['cp']!r} Tmelt {T_MELT_PARTICLE!r} latent {METAL['L']!r} temp {T0!r} solid_metal {a.estar!r} {a.restitution!r} handover {0.5 * PROCESS['dmin']!r}
 # the nozzle moves with the beam: ring centres follow x_beam(t)
 variable        xb equal {g.x_start!r}+{PROCESS['speed']!r}*time
 region          slab block {xa!r} {xb!r} 0.0 {radii[-1] + 0.1e-3!r} {z0!r} {z1!r}

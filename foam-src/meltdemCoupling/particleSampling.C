@@ -17,8 +17,28 @@ Foam::meltdem::particleSampling::particleSampling
     thermal_(thermal),
     laserShadow_(laserShadow),
     largestCell_(Foam::cbrt(gMax(mesh.V().field()))),
-    laser_(nullptr)
-{}
+    laser_(nullptr),
+    wasSolid_
+    (
+        IOobject
+        (
+            "wasSolidMetal",
+            mesh.time().timeName(),
+            mesh,
+            IOobject::NO_READ,
+            IOobject::NO_WRITE
+        ),
+        mesh,
+        dimensionedScalar("unknown", dimless, -1.0)
+    )
+{
+    IOobject io(wasSolid_.name(), mesh.time().timeName(), mesh, IOobject::MUST_READ);
+    if (io.typeHeaderOk<volScalarField>(true))
+    {
+        wasSolid_ = volScalarField(io, mesh);
+        wasSolid_.writeOpt() = IOobject::AUTO_WRITE;
+    }
+}
 
 
 ::meltdem::coupling::CellFluidFields Foam::meltdem::particleSampling::cellFields
@@ -91,7 +111,7 @@ void Foam::meltdem::particleSampling::solidSurfaces
     const std::vector<mc::ExchangeRecord>& start,
     const scalar dt,
     std::vector<mc::SolidSurface>& solid
-) const
+)
 {
     const scalarField solidFraction
     (
@@ -102,7 +122,17 @@ void Foam::meltdem::particleSampling::solidSurfaces
     for (const auto& r : start) vmax = std::max(vmax, r.v.norm());
     MPI_Allreduce(MPI_IN_PLACE, &vmax, 1, MPI_DOUBLE, MPI_MAX, comm_);
     const scalar reach = vmax*dt + largestCell_;
-    exchange.nearest_solid(solidFraction.cdata(), reach, solid);
+    std::vector<Eigen::Vector3d> velocity;
+    velocity.reserve(start.size());
+    for (const auto& r : start) velocity.push_back(r.v);
+    exchange.nearest_solid
+    (
+        solidFraction.cdata(), reach, solid, wasSolid_.primitiveField().cdata(),
+        &velocity
+    );
+    // the mask, not the fraction: exact when written and read back
+    wasSolid_.primitiveFieldRef() = pos0(solidFraction - 0.5);
+    wasSolid_.writeOpt() = IOobject::AUTO_WRITE;
 }
 
 

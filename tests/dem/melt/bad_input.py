@@ -33,6 +33,8 @@ cases = [
     ("ambient zero conductivity", fix(OK_ARGS + " ambient 1500 0 1.6 2e-5 520 0 0 0"),
      "conductivity KF must be > 0"),
     ("temp above Tmelt", fix(OK_ARGS + " temp 1200 " + AMB), "temp 1200 outside [0, Tmelt"),
+    ("negative handover diameter", fix(OK_ARGS + " handover -1e-6"), "handover diameter must be >= 0 m"),
+    ("handover without value", fix(OK_ARGS + " handover"), "keyword handover needs 1 value"),
     ("unknown keyword", fix(OK_ARGS + " colour red"), "unknown keyword colour"),
     ("atom_style sphere without radius variation",
      fix(OK_ARGS, HEADER.replace("atom_style sphere 1", "atom_style sphere")), "requires atom_style sphere 1"),

@@ -27,7 +27,7 @@ struct FluidState {
 };
 
 // A FluidState as doubles (LAMMPS per-atom arrays carry it when a particle changes rank).
-constexpr int kFluidStateDoubles = 21;
+constexpr int kFluidStateDoubles = 22;
 constexpr int kFluidStateHeatSource = 16;  // where heat_source is
 inline void pack_fluid_state(const FluidState &s, double *q)
 {
@@ -37,6 +37,7 @@ inline void pack_fluid_state(const FluidState &s, double *q)
   for (int a = 0; a < 3; ++a) q[10 + a] = s.solid.point[a], q[13 + a] = s.solid.normal[a];
   q[kFluidStateHeatSource] = s.heat_source, q[17] = s.thermal ? 1.0 : 0.0, q[18] = s.mass, q[19] = s.capacity;
   q[20] = s.implicit_heat ? 1.0 : 0.0;
+  q[21] = s.solid.fresh ? 1.0 : 0.0;
 }
 inline void unpack_fluid_state(const double *q, FluidState &s)
 {
@@ -46,6 +47,7 @@ inline void unpack_fluid_state(const double *q, FluidState &s)
   for (int a = 0; a < 3; ++a) s.solid.point[a] = q[10 + a], s.solid.normal[a] = q[13 + a];
   s.heat_source = q[kFluidStateHeatSource], s.thermal = q[17] != 0.0, s.mass = q[18], s.capacity = q[19];
   s.implicit_heat = q[20] != 0.0;
+  s.solid.fresh = q[21] != 0.0;
 }
 
 class FluidStateProvider {

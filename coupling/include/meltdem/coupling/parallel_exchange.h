@@ -85,7 +85,12 @@ class ParallelExchange {
   // solid_fraction (metal that is solid, per cell) is >= 1/2, searched within the
   // particle's radius + reach of its centre (solid_metal_contact.h); the rank with the
   // nearest surface provides it, the lowest on ties.
-  void nearest_solid(const double *solid_fraction, double reach, std::vector<SolidSurface> &local_out) const;
+  // was_solid_fraction: the same one coupling interval ago, on the same cells (nullptr:
+  // unknown, every surface is fresh); velocity: of each local particle (nullptr: at rest),
+  // so that it is handed the nearest surface it approaches (nearest_solid_surface)
+  void nearest_solid(const double *solid_fraction, double reach, std::vector<SolidSurface> &local_out,
+                     const double *was_solid_fraction = nullptr,
+                     const std::vector<Eigen::Vector3d> *velocity = nullptr) const;
 
   // Collective. Adds w_ic * amounts[i] of every particle i (all ranks) to cell c of this
   // rank: cell_amounts has one entry per local cell. Amounts of particles outside the
