@@ -10,7 +10,7 @@ grains near either). At the scene's fixed 0.5 us step (this test's step before 2
 flow ran past its Courant limit at moments (0.8, then 16.6 against maxCo 0.3): the run completed
 on LAMMPS 29 Sep 2021 but the beds LAMMPS 4 Feb 2025 pours stopped in the continuum's own solve
 (a cell at -139 K, uniform or refined depending on the bed), and at 1 us some runs blew up on
-either release. The flow's step costs about 1.7 times the fixed one here.
+either release. The flow's step costs about twice the fixed one (bench/amr.md: 170 / 196 s CPU against 74 / 87 s).
 The bed is examples/powder-bed's pour for this floor, run once by LAMMPS 29 Sep 2021 and kept
 (bed-ci/README.md): a pour is chaotic, and on the bed LAMMPS 4 Feb 2025 pours from the same input
 the refined track came out 5.8 % wider than the uniform one (121.0 vs 114.3 um); on this bed
