@@ -417,12 +417,7 @@ double FixPowderMelt::hold_coefficients(int i, const mc::FluidState &fluid, doub
   if (solid_flag) {
     // no solid metal this interval: the contact memory is forgotten, as a step of the full path
     // does (mc::update_solid_contact)
-    const mc::SolidContactMemory none;
-    melt[i][S_OFFSET] = none.offset;
-    melt[i][S_HAS] = none.has_plane ? 1.0 : 0.0;
-    for (int k = 0; k < 3; k++) melt[i][S_PX + k] = none.point[k], melt[i][S_NX + k] = none.normal[k];
-    melt[i][S_HAS_MARK] = none.has_mark ? 1.0 : 0.0;
-    for (int k = 0; k < 3; k++) melt[i][S_MX + k] = none.mark[k];
+    store_contact_memory(i, mc::SolidContactMemory());
   }
   mc::HeldExchangeInput in;
   in.model = drag_model;
@@ -463,6 +458,34 @@ double FixPowderMelt::hold_coefficients(int i, const mc::FluidState &fluid, doub
   c[C_PT] = melt[i][P_T];
   c[C_IHEAT] = melt[i][I_HEAT];
   return in.s2;
+}
+
+/* ----------------------------------------------------------------------
+   the particle's memory of its solid-metal contact, in the S_* columns
+------------------------------------------------------------------------- */
+
+mc::SolidContactMemory FixPowderMelt::contact_memory(int i) const
+{
+  mc::SolidContactMemory m;
+  m.offset = melt[i][S_OFFSET];
+  m.has_plane = melt[i][S_HAS] != 0.0;
+  m.point = Eigen::Vector3d(melt[i][S_PX], melt[i][S_PY], melt[i][S_PZ]);
+  m.normal = Eigen::Vector3d(melt[i][S_NX], melt[i][S_NY], melt[i][S_NZ]);
+  m.has_mark = melt[i][S_HAS_MARK] != 0.0;
+  m.mark = Eigen::Vector3d(melt[i][S_MX], melt[i][S_MY], melt[i][S_MZ]);
+  return m;
+}
+
+void FixPowderMelt::store_contact_memory(int i, const mc::SolidContactMemory &m)
+{
+  melt[i][S_OFFSET] = m.offset;
+  melt[i][S_HAS] = m.has_plane ? 1.0 : 0.0;
+  melt[i][S_HAS_MARK] = m.has_mark ? 1.0 : 0.0;
+  for (int k = 0; k < 3; k++) {
+    melt[i][S_PX + k] = m.point[k];
+    melt[i][S_NX + k] = m.normal[k];
+    melt[i][S_MX + k] = m.mark[k];
+  }
 }
 
 /* ----------------------------------------------------------------------
@@ -536,19 +559,9 @@ void FixPowderMelt::post_force(int /*vflag*/)
       // the continuum's solid metal repels the particle as a granular wall, counting only
       // the overlap the particle made by moving (not what freezing melt put around it)
       const Eigen::Vector3d xi(x[i][0], x[i][1], x[i][2]);
-      mc::SolidContactMemory memory;
-      memory.offset = melt[i][S_OFFSET];
-      memory.has_plane = melt[i][S_HAS] != 0.0;
-      memory.point = Eigen::Vector3d(melt[i][S_PX], melt[i][S_PY], melt[i][S_PZ]);
-      memory.normal = Eigen::Vector3d(melt[i][S_NX], melt[i][S_NY], melt[i][S_NZ]);
-      memory.has_mark = melt[i][S_HAS_MARK] != 0.0;
-      memory.mark = Eigen::Vector3d(melt[i][S_MX], melt[i][S_MY], melt[i][S_MZ]);
+      mc::SolidContactMemory memory = contact_memory(i);
       const double offset = mc::update_solid_contact(memory, fluid.solid, xi, radius[i], interval_start != 0);
-      melt[i][S_OFFSET] = memory.offset;
-      melt[i][S_HAS] = memory.has_plane ? 1.0 : 0.0;
-      for (int k = 0; k < 3; k++) melt[i][S_PX + k] = memory.point[k], melt[i][S_NX + k] = memory.normal[k];
-      melt[i][S_HAS_MARK] = memory.has_mark ? 1.0 : 0.0;
-      for (int k = 0; k < 3; k++) melt[i][S_MX + k] = memory.mark[k];
+      store_contact_memory(i, memory);
       const Eigen::Vector3d Fs =
           mc::solid_contact_force(fluid.solid, xi, radius[i], rmass[i], Eigen::Vector3d(v[i][0], v[i][1], v[i][2]),
                                   solid_estar, solid_alpha, offset);

@@ -138,6 +138,8 @@ class FixPowderMelt : public Fix {
   };
   // the columns before the solid-contact mark: restarts written before it hold these
   static constexpr int NCOL_BEFORE_MARK = S_HAS_MARK;
+  meltdem::coupling::SolidContactMemory contact_memory(int i) const;
+  void store_contact_memory(int i, const meltdem::coupling::SolidContactMemory &m);
   std::vector<meltdem::coupling::ExchangeRecord> finished;  // deleted this interval
   meltdem::coupling::ExchangeRecord record(int i) const;
   void records(std::vector<meltdem::coupling::ExchangeRecord> &out, bool with_finished) const;

@@ -466,11 +466,13 @@ void ParallelExchange::nearest_solid(const double *solid_fraction, double reach,
   Routing routing;
   std::vector<ParticleShape> visitors;
   route(local_, reach, routing, visitors);
-  std::vector<double> v_local(3 * local_.size(), 0.0), v_visitor;
-  if (velocity)
+  std::vector<double> v_visitor(3 * visitors.size(), 0.0);
+  if (velocity) {
+    std::vector<double> v_local(3 * local_.size());
     for (std::size_t i = 0; i < local_.size(); ++i)
       for (int a = 0; a < 3; ++a) v_local[3 * i + a] = velocity->at(i)[a];
-  forward(routing, v_local, 3, v_visitor);
+    forward(routing, v_local, 3, v_visitor);
+  }
   constexpr int kPack = 10;  // present, distance, point, normal, fresh, approached
   std::vector<double> found(kPack * visitors.size(), 0.0);
   std::vector<long> cells;
@@ -506,16 +508,15 @@ void ParallelExchange::nearest_solid(const double *solid_fraction, double reach,
   out.assign(local_.size(), SolidSurface());
   for (std::size_t j = 0; j < routing.send_index.size(); ++j) {
     const double *q = &rows[kPack * j];
+    SolidSurface found_there;
+    found_there.present = q[0] != 0.0;
+    found_there.distance = q[1];
+    found_there.point = Eigen::Vector3d(q[2], q[3], q[4]);
+    found_there.normal = Eigen::Vector3d(q[5], q[6], q[7]);
+    found_there.fresh = q[8] != 0.0;
+    found_there.approached = q[9] != 0.0;
     SolidSurface &s = out[routing.send_index[j]];
-    const bool approached = q[9] != 0.0;
-    if (q[0] == 0.0 || (s.present && (s.approached && !approached))) continue;
-    if (s.present && s.approached == approached && !(q[1] < s.distance)) continue;
-    s.approached = approached;
-    s.present = true;
-    s.distance = q[1];
-    s.point = Eigen::Vector3d(q[2], q[3], q[4]);
-    s.normal = Eigen::Vector3d(q[5], q[6], q[7]);
-    s.fresh = q[8] != 0.0;
+    if (preferred_surface(found_there, s)) s = found_there;
   }
 }
 

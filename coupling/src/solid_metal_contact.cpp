@@ -11,7 +11,6 @@ SolidSurface nearest_solid_surface(const Eigen::Vector3d &c, const std::vector<E
                                    const Eigen::Vector3d &v)
 {
   SolidSurface best;
-  best.distance = std::numeric_limits<double>::infinity();
   const double speed = v.norm();
   for (std::size_t i = 0; i < lo.size(); ++i) {
     SolidSurface box;
@@ -33,10 +32,16 @@ SolidSurface nearest_solid_surface(const Eigen::Vector3d &c, const std::vector<E
     }
     box.fresh = was_solid.empty() || !was_solid[i];
     box.approached = speed > 0.0 && v.dot(box.normal) < -kApproachShare * speed;
-    if ((box.approached && !best.approached) || (box.approached == best.approached && box.distance < best.distance))
-      best = box;
+    if (preferred_surface(box, best)) best = box;
   }
   return best;
+}
+
+bool preferred_surface(const SolidSurface &a, const SolidSurface &b)
+{
+  if (!a.present || !b.present) return a.present && !b.present;
+  if (a.approached != b.approached) return a.approached;
+  return a.distance < b.distance;
 }
 
 Eigen::Vector3d solid_contact_force(const SolidSurface &s, const Eigen::Vector3d &x, double R, double m,

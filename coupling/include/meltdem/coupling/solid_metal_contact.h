@@ -38,6 +38,10 @@ SolidSurface nearest_solid_surface(const Eigen::Vector3d &c, const std::vector<E
                                    const std::vector<Eigen::Vector3d> &hi, const std::vector<char> &was_solid = {},
                                    const Eigen::Vector3d &v = Eigen::Vector3d::Zero());
 
+// Whether surface a is handed over rather than b: any before none, approached before not,
+// then the nearer (b on ties).
+bool preferred_surface(const SolidSurface &a, const SolidSurface &b);
+
 // Hertz/Tsuji normal force on a sphere (radius R, mass m, velocity v, centre x) from the
 // plane; zero without overlap. E_star = effective modulus, alpha = Tsuji damping. offset:
 // overlap the surface brought onto the particle (SolidContactMemory), not counted.
