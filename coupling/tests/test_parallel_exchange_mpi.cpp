@@ -3,7 +3,8 @@
 // every cell's deposit and every particle's sampled field must equal the single-rank result
 // on the whole mesh, what the particles took is reported by another rank than the one that
 // located them, and each rank receives exactly the particles whose sphere reaches its
-// cells (no rank sees them all).
+// cells (no rank sees them all). The nearest solid surface of each particle, at rest and
+// moving (approached first, fresh or old), is the one found on one rank.
 #include "mpi_gtest.h"
 #include "meltdem/coupling/parallel_exchange.h"
 #include "parallel_exchange_case.h"
@@ -12,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 
 using namespace meltdem::coupling;
 using namespace meltdem::coupling::testing;
@@ -75,6 +77,23 @@ TEST_P(ParallelExchangeMpi, EqualsOneRank)
   const std::vector<double> solid_serial = solid_of(whole);
   std::vector<SolidSurface> surfaces_serial;
   serial.nearest_solid(solid_serial.data(), reach, surfaces_serial);
+  // again with velocities (moving particles are handed the nearest surface they approach) and
+  // last interval's solid (part of it: fresh and old surfaces)
+  auto velocity_of = [](const ParticleShape &p) {
+    const double t = 0.7 * double(p.id);
+    return Eigen::Vector3d(std::sin(t), std::cos(1.3 * t), -0.5 + std::sin(2.1 * t));
+  };
+  auto was_solid_of = [&](const CartesianGridMesh &m) {
+    std::vector<double> was = solid_of(m);
+    for (long c = 0; c < m.n_cells(); ++c)
+      if (m.cell_centre(c).x() > 5e-4) was[std::size_t(c)] = 0.0;
+    return was;
+  };
+  std::vector<Eigen::Vector3d> velocity_serial;
+  for (const auto &p : k.particles) velocity_serial.push_back(velocity_of(p));
+  const std::vector<double> was_serial = was_solid_of(whole);
+  std::vector<SolidSurface> moving_serial;
+  serial.nearest_solid(solid_serial.data(), reach, moving_serial, was_serial.data(), &velocity_serial);
 
   // parallel: round-robin particles, half the mesh each
   std::vector<ParticleShape> my_particles;
@@ -106,6 +125,11 @@ TEST_P(ParallelExchangeMpi, EqualsOneRank)
   const std::vector<double> solid_parallel = solid_of(mine);
   std::vector<SolidSurface> surfaces_parallel;
   parallel.nearest_solid(solid_parallel.data(), reach, surfaces_parallel);
+  std::vector<Eigen::Vector3d> velocity_parallel;
+  for (const auto &p : my_particles) velocity_parallel.push_back(velocity_of(p));
+  const std::vector<double> was_parallel = was_solid_of(mine);
+  std::vector<SolidSurface> moving_parallel;
+  parallel.nearest_solid(solid_parallel.data(), reach, moving_parallel, was_parallel.data(), &velocity_parallel);
 
   // the visitors: the particles whose sphere reaches this rank's slab, and no others
   std::size_t reaching = 0;
@@ -144,6 +168,31 @@ TEST_P(ParallelExchangeMpi, EqualsOneRank)
   }
   MPI_Allreduce(MPI_IN_PLACE, &surfaces_found, 1, MPI_INT, MPI_SUM, MPI_COMM_WORLD);
   EXPECT_GT(surfaces_found, 10);
+  // moving particles: the same surface as on one rank, approached or not, fresh or old; and
+  // the velocities change some choices (the test exercises the preference across ranks)
+  int counts[4] = {0, 0, 0, 0};  // approached, fresh, old, another surface than at rest
+  for (std::size_t l = 0; l < my_index.size(); ++l) {
+    const SolidSurface &a = moving_parallel[l], &b = moving_serial[my_index[l]];
+    ASSERT_EQ(a.present, b.present) << "moving particle " << my_index[l];
+    if (!a.present) continue;
+    EXPECT_NEAR(a.distance, b.distance, 1e-15) << "moving particle " << my_index[l];
+    EXPECT_LE((a.point - b.point).norm(), 1e-15) << "moving particle " << my_index[l];
+    EXPECT_LE((a.normal - b.normal).norm(), 1e-15) << "moving particle " << my_index[l];
+    EXPECT_EQ(a.approached, b.approached) << "moving particle " << my_index[l];
+    EXPECT_EQ(a.fresh, b.fresh) << "moving particle " << my_index[l];
+    counts[0] += a.approached;
+    counts[1] += a.fresh;
+    counts[2] += !a.fresh;
+    counts[3] += (a.point - surfaces_parallel[l].point).norm() > 0.0;
+  }
+  MPI_Allreduce(MPI_IN_PLACE, counts, 4, MPI_INT, MPI_SUM, MPI_COMM_WORLD);
+  EXPECT_GT(counts[0], 0);
+  EXPECT_GT(counts[1], 0);
+  EXPECT_GT(counts[2], 0);
+  EXPECT_GT(counts[3], 0);
+  if (rank == 0)
+    std::printf("moving particles: %d approach their surface, %d fresh, %d old, %d handed another than at rest\n",
+                counts[0], counts[1], counts[2], counts[3]);
   double w[2] = {worst_cell, worst_sample};
   MPI_Allreduce(MPI_IN_PLACE, w, 2, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
   const std::string m = to_string(GetParam());
