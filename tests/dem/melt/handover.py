@@ -5,36 +5,56 @@ d^2 law and, in the step its diameter passes D, hands what is left to the contin
 mass handed over is all of m0, the enthalpy handed over is m0 cp T0 plus the heat absorbed
 (the remnant goes with its sensible enthalpy, not melted), the remnant's unmelted mass is that
 of a D sphere within one step's melting, and the particle is gone at the time the d^2 law
-reaches D."""
+reaches D. Argument: number of MPI ranks (the np 2 case hands over 8 particles that fall
+with the gas, six of them across the boundary of the two ranks before the handover, and goes
+through write_restart / read_restart before it)."""
 import math
 import sys
+import tempfile
 
 from meltdem.testing.lammps_run import printed_value as value, run, thermo_rows as thermo
 from meltdem.testing.report import check_absolute, check_at_most, check_relative
 from melt_common import HEADER
 
-TEST = "dem.melt.handover"
+np = int(sys.argv[1]) if len(sys.argv) > 1 else 1
+TEST = "dem.melt.handover" + ("" if np == 1 else f".np{np}")
 d0, rho, cp, Tm, T0, Tf, k = 600e-6, 8020.0, 48.35, 1000.0, 0.0, 1500.0, 100.0
 L = 0.248611 / 9.069e-7  # Codina2019: E_latent = 0.248611 J for m = 9.069e-7 kg
 D = 0.5 * d0
 dt = 1e-6
 
-text = HEADER + f"""create_atoms 1 single 0 0 0
-set group all diameter {d0} density {rho}
+n = 1 if np == 1 else 8
+procs = "" if n == 1 else "processors 1 2 1\n"
+if n == 1:
+    atoms = "create_atoms 1 single 0 0 0\n"
+else:
+    # 8 particles above y = 0, the boundary of the two ranks, falling with the gas (2 m/s, no
+    # slip: each melts as the single one does); particle i crosses it at (i + 1) 0.25 ms, six of
+    # them before the handover at 1.61 ms, three before the restart
+    atoms = "".join(f"create_atoms 1 single {0.001 * (i - 4):.6f} {0.0005 * (i + 1):.6f} 0\n" for i in range(n))
+melt = (f"fix m all powder/melt cp {cp} Tmelt {Tm} latent {L!r} temp {T0} "
+        f"ambient {Tf} {k} 1.6115 2.1e-5 5210.928 0 -2 0 handover {D!r}\n")
+output = """fix nve all nve/sphere
+thermo_style custom step atoms f_m[1] f_m[2] f_m[3] f_m[4] f_m[5] f_m[6]
+thermo_modify format float %.17g
+thermo 1
+"""
+text = HEADER.replace("create_box", procs + "create_box") + atoms + f"""set group all diameter {d0} density {rho}
 velocity all set 0 -2 0
 variable m0 equal mass[1]
 variable m0f format m0 %.17g
 print "MASS ${{m0f}}"
 timestep {dt}
-fix m all powder/melt cp {cp} Tmelt {Tm} latent {L!r} temp {T0} &
-    ambient {Tf} {k} 1.6115 2.1e-5 5210.928 0 -2 0 handover {D!r}
-fix nve all nve/sphere
-thermo_style custom step atoms f_m[1] f_m[2] f_m[3] f_m[4] f_m[5] f_m[6]
-thermo_modify format float %.17g
-thermo 1
-run 2000
-"""
-_, out = run(text)
+""" + melt + output
+if n == 1:
+    _, out = run(text + "run 2000\n")
+else:
+    # before the handover: write_restart, then go on in a new process from the file
+    with tempfile.TemporaryDirectory() as wd:
+        _, out = run(text + "run 1000\nwrite_restart half.restart\n", np=np, cwd=wd)
+        _, out2 = run(procs + "read_restart half.restart\ncomm_modify vel yes\nneighbor 1e-4 bin\n"
+                      f"timestep {dt}\n" + melt + output + "run 1000\n", np=np, cwd=wd)
+    out += out2
 m = value(out, "MASS")
 rows = thermo(out)
 last = rows[-1]
@@ -46,12 +66,12 @@ def check_rel_error(what, measured, reference, tol):
 
 
 ok = check_absolute(TEST, "particles left after the handover", last["Atoms"], 0, 0)
-ok &= check_rel_error("mass handed over vs m0 relative error", last["f_m[1]"], m, 1e-15)
-ok &= check_rel_error("enthalpy handed over vs m0 cp T0 + heat absorbed relative error", last["f_m[2]"],
-                      m * cp * T0 + last["f_m[6]"], 1e-12)
-ok &= check_rel_error("y momentum handed over vs m0 vy relative error", last["f_m[4]"], m * -2.0, 1e-12)
+ok &= check_rel_error("mass handed over vs n m0 relative error", last["f_m[1]"], n * m, 1e-15)
+ok &= check_rel_error("enthalpy handed over vs n m0 cp T0 + heat absorbed relative error", last["f_m[2]"],
+                      n * m * cp * T0 + last["f_m[6]"], 1e-12)
+ok &= check_rel_error("y momentum handed over vs n m0 vy relative error", last["f_m[4]"], n * m * -2.0, 1e-12)
 # the unmelted remnant: what the handed enthalpy lacks of a fully melted grain's m0 (cp Tm + L)
-remnant = (m * (cp * Tm + L) - last["f_m[2]"]) / L
+remnant = (m * (cp * Tm + L) - last["f_m[2]"] / n) / L
 m_D = rho * math.pi / 6.0 * D ** 3
 shrink = 8.0 * k * (Tf - Tm) / (rho * L)  # d^2 law: d(d^2)/dt = -shrink
 one_step = 1.5 * shrink * dt / (D * D) * 1.05  # relative mass melted in one step at D (m ~ d^3)
@@ -60,6 +80,10 @@ ok &= check_relative(TEST, "remnant mass handed over unmelted vs rho pi D^3 / 6 
 tau = rho * cp * d0 * d0 / (12.0 * k)
 t_D = tau * math.log((Tf - T0) / (Tf - Tm)) + (d0 * d0 - D * D) / shrink
 gone = next(r["Step"] for r in rows if r["Atoms"] == 0)
+if n > 1:
+    before = max(r["Atoms"] for r in rows if r["Step"] == gone - 1)
+    ok &= check_absolute(TEST, "particles there the step before (all hand over in one step, as one rank's)",
+                         before, n, 0)
 ok &= check_absolute(TEST, "handover time [s] (d^2 law reaches D; particle gone at the next step)",
                      (gone - 1) * dt, t_D, dt)
 t_full = tau * math.log((Tf - T0) / (Tf - Tm)) + d0 * d0 / shrink
