@@ -30,8 +30,8 @@ import time
 from meltdem import paths
 from meltdem.case import coupled as cc
 from meltdem.case import foam as fc
-from meltdem.loader import load_module
-from meltdem.testing.cli import SRC, build_example, check_absolute, check_at_least, meltdem_command
+from meltdem.testing.cli import build_example, check_absolute, check_at_least, meltdem_command
+from meltdem.testing.thesis_case import thesis_particle
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 
@@ -160,7 +160,7 @@ else:
         subprocess.run(["umount", mnt])
 
 # ------------------------------------------------------------- 3. lost grains, 4. momentum
-tp = load_module(os.path.join(SRC, "tests", "coupling", "thesis_particle", "thesis_particle.py"), "thesis_particle")
+tp = thesis_particle()
 
 LX, LY, LZ = cc.CHANNEL["lx"], cc.CHANNEL["ly"], cc.CHANNEL["lz"]
 

@@ -24,15 +24,12 @@ import subprocess
 import sys
 import tempfile
 
-from meltdem import paths
 from meltdem.case import coupled as cc
 from meltdem.case import foam as fc
-from meltdem.loader import load_module
 from meltdem.testing.report import check_at_most, report
+from meltdem.testing.thesis_case import thesis_particle
 
-src = paths.source_dir()
-
-tp = load_module(os.path.join(src, "tests", "coupling", "thesis_particle", "thesis_particle.py"), "thesis_particle")
+tp = thesis_particle()
 
 LX, LY, LZ = cc.CHANNEL["lx"], cc.CHANNEL["ly"], cc.CHANNEL["lz"]
 

@@ -19,11 +19,10 @@ import tempfile
 
 from meltdem.case import coupled as cc
 from meltdem.case import foam as fc
-from meltdem.loader import load_module
 from meltdem.testing.report import check_absolute
+from meltdem.testing.thesis_case import thesis_particle
 
-tp = load_module(os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))),
-                              "thesis_particle", "thesis_particle.py"), "thesis_particle")
+tp = thesis_particle()
 
 TEST = "coupling.fixed_step_courant"
 WARNING = "fixes the fluid step at"

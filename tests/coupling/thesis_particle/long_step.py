@@ -27,10 +27,10 @@ import numpy as np
 
 from meltdem.case import coupled as cc
 from meltdem.case import foam as fc
-from meltdem.loader import load_module
 from meltdem.testing.report import check_relative
+from meltdem.testing.thesis_case import thesis_particle
 
-tp = load_module(os.path.join(os.path.dirname(os.path.abspath(__file__)), "thesis_particle.py"), "thesis_particle")
+tp = thesis_particle()
 
 
 def run(case, fluid_dt):

@@ -32,9 +32,9 @@ import sys
 import tempfile
 
 from meltdem import paths
-from meltdem.loader import load_module
 from meltdem.testing.cli import meltdem_command
 from meltdem.testing.report import check_absolute
+from meltdem.testing.thesis_case import thesis_particle
 
 SRC = paths.source_dir()
 BIN = paths.bin_dir()
@@ -138,7 +138,7 @@ def dem_seed(work):
 
 
 def coupled_seeds(work):
-    tp = load_module(os.path.join(SRC, "tests", "coupling", "thesis_particle", "thesis_particle.py"), "thesis_particle")
+    tp = thesis_particle()
     from meltdem.case import coupled as cc
     channel = os.path.join(work, "channel_seed")
     cc.channel_case(channel, "centre", dict(d=tp.D, rho=tp.RHO_P, cp=tp.CP_P, Tm=tp.TM, L=tp.L, T0=0.0, y=17.6e-3),

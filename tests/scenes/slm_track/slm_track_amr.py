@@ -32,6 +32,7 @@ import numpy as np
 from meltdem import scene as scenes
 from meltdem.case import coupled as cc
 from meltdem.case import foam as fc
+from meltdem.io.dumps import read_frames
 from meltdem.testing.report import check_at_most, check_relative
 
 scene = scenes.module("slm-track")
@@ -51,10 +52,10 @@ def main():
     work = tempfile.mkdtemp(prefix="meltdem-slm-amr-")
     bed = os.path.join(work, "bed.dump")
     shutil.copy(KEPT_BED, bed)
-    box = [float(x) for x in open(bed).read().split("ITEM: BOX BOUNDS")[1].split()[3:9]]
+    box = read_frames(bed)[-1]["box"]
     ok = check_relative(TEST, "kept bed's floor x extent vs the ci variant's lx [m] (else pour bed-ci/ again)",
-                        box[1] - box[0], scene.VARIANTS["ci"]["lx"], 1e-9)
-    ok &= check_relative(TEST, "kept bed's floor z extent vs the ci variant's lz [m]", box[5] - box[4],
+                        box[0][1] - box[0][0], scene.VARIANTS["ci"]["lx"], 1e-9)
+    ok &= check_relative(TEST, "kept bed's floor z extent vs the ci variant's lz [m]", box[2][1] - box[2][0],
                          scene.VARIANTS["ci"]["lz"], 1e-9)
     res = {}
     for levels in (0, 1):
