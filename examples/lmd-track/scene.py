@@ -427,11 +427,12 @@ def refinement_dict(a):
     """refinement{} of a --refine run: the finest cells in the melt pool and the metal within 300 K
     of melting, under the beam (1.2 radii, 0.5 mm deep) and where it will be over the next half beam
     radius of travel, and around the grains near either (with powder); the base mesh elsewhere."""
-    ahead = max(a.refine_interval, int(round(0.25 * PROCESS["spot_diameter"] / (PROCESS["speed"] * a.max_dt))))
+    ahead = 0.25 * PROCESS["spot_diameter"] / PROCESS["speed"]
     grains = [("grains", "type particles; diameters 1; near (pool beam);")] if a.particles else []
     return fc.refinement_dict(a.refine, a.refine_interval,
                               [("meltPool", "belowSolidus 300;"),
-                               ("laser", f"radii 1.2; depth 5e-4; lookAhead {ahead};")] + grains)
+                               ("laser", f"radii 1.2; depth 5e-4; lookAhead {a.refine_interval}; "
+                                         f"lookAheadTime {ahead!r};")] + grains)
 
 
 # ---------------------------------------------------------------------------------------------

@@ -300,9 +300,9 @@ def refinement_dict(cfg, levels, interval):
     """refinement{} of a --refine run: the finest cells in the pool and the metal about to melt, under
     the beam and where it will be over the next half beam radius of travel, and around the grains
     near either; coarse cells in the gas and the deep substrate."""
-    ahead = max(interval, int(round(0.5 * cfg["rw"] / (cfg["v"] * MAX_DT_EXCHANGE)))) if cfg["v"] else 0
+    ahead = f"lookAhead {interval}; lookAheadTime {0.5 * cfg['rw'] / cfg['v']!r};" if cfg["v"] else ""
     return fc.refinement_dict(levels, interval, [("meltPool", "belowSolidus 300;"),
-                                                 ("laser", f"radii 1.2; lookAhead {ahead};"),
+                                                 ("laser", f"radii 1.2; {ahead}"),
                                                  ("grains", "type particles; diameters 1; near (pool beam);")])
 
 

@@ -102,14 +102,15 @@ def evaporation_dict():
             f"hv {hv + METAL['L']!r}; cp {cp!r}; Th0 {T0!r}; CM {VAPOUR['M'] / (2 * math.pi * R)!r}; }}\n")
 
 
-def refinement_dict(g, track, max_dt):
+def refinement_dict(g, track):
     """The finest cells in the pool and the metal within 300 K of melting, under the beam (1.2
     radii, one radius deep) and where it will be over the next half radius of travel."""
     r = 0.5 * track["spot"]
-    ahead = max(g["refine_interval"], int(round(0.5 * r / (track["speed"] * max_dt))))
+    ahead = 0.5 * r / track["speed"]
     return fc.refinement_dict(g["refine"], g["refine_interval"],
                               [("meltPool", "belowSolidus 300;"),
-                               ("laser", f"radii 1.2; depth {r!r}; lookAhead {ahead};")])
+                               ("laser", f"radii 1.2; depth {r!r}; lookAhead {g['refine_interval']}; "
+                                         f"lookAheadTime {ahead!r};")])
 
 
 def build(a):
@@ -190,7 +191,7 @@ laser
     tStart          0;
     tStop           {end!r};
 }}
-{evaporation_dict() if a.recoil else ""}{refinement_dict(g, track, max_dt) if g['refine'] else ""}"""  # noqa: E501
+{evaporation_dict() if a.recoil else ""}{refinement_dict(g, track) if g['refine'] else ""}"""  # noqa: E501
     fc.meltdem_properties(case, physics=physics, surface=surface, extra=extra)
     keep = ("dx", "refine", "refine_interval", "track", "lx", "ly", "lz", "sub", "gas", "x0", "base", "write")
     meta = dict(scene="single-track", variant=a.variant, track_case=a.track_case,

@@ -174,13 +174,13 @@ run             0
 """)
 
 
-def refinement_dict(levels, fluid_dt, interval=1):
+def refinement_dict(levels, interval=1):
     """refinement{} of a --refine run: the finest cells in the melt pool and the metal about to melt,
     under the beam and where it will be over the next half spot of travel (at least until the next
     update), and around the grains near either; coarse cells elsewhere."""
-    ahead = max(interval, int(round(0.5 * SPOT / (SPEED * fluid_dt))))
+    ahead = f"lookAhead {interval}; lookAheadTime {0.5 * SPOT / SPEED!r};"
     return fc.refinement_dict(levels, interval, [("meltPool", "belowSolidus 300;"),
-                                                 ("laser", f"radii 1.5; lookAhead {ahead};"),
+                                                 ("laser", f"radii 1.5; {ahead}"),
                                                  ("grains", "type particles; diameters 1; near (pool beam);")])
 
 
@@ -271,7 +271,7 @@ particles
     distribution    {distribution};
     demStepsPerFluidStep {sub_cycles};
 }}
-{refinement_dict(refine, n_sub * DEM_DT, refine_interval) if refine else ""}""")
+{refinement_dict(refine, refine_interval) if refine else ""}""")
     dump_every = 1000  # DEM steps (5 us between snapshots)
     lammps_input(case, v, dump_every)
     meta = dict(scene="slm-track", variant=variant, n_cells=list(n), particles=nparticles, t_scan_s=t_scan,

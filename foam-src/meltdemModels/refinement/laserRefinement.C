@@ -19,7 +19,8 @@ laserRefinement::laserRefinement
     refinementCriterion(name, dict, mesh, maxLevel),
     radii_(nonNegative("radii", 1.5)),
     depth_(dict.found("depth") ? nonNegative("depth", 0) : -1),
-    lookAhead_(dict.getOrDefault<label>("lookAhead", 0))
+    lookAhead_(dict.getOrDefault<label>("lookAhead", 0)),
+    lookAheadTime_(nonNegative("lookAheadTime", 0))
 {
     const IOdictionary& props = mesh.lookupObject<IOdictionary>("meltdemProperties");
     if (!props.subDict("physics").getOrDefault<bool>("laser", false))
@@ -49,7 +50,7 @@ void laserRefinement::mark(const state& s, bitSet& cells) const
 
     // positions now and along the path ahead, no further apart than half a beam radius
     const scalar t0 = mesh_.time().value();
-    const scalar ahead = lookAhead_*s.deltaT;
+    const scalar ahead = max(lookAhead_*s.deltaT, lookAheadTime_);
     const scalar travel = mag(beam.position(t0 + ahead) - beam.position(t0));
     const label nSamples = 1 + (ahead > 0 ? label(ceil(2*travel/max(beam.radius(), VSMALL))) + 1 : 0);
     for (label k = 0; k < nSamples; ++k)

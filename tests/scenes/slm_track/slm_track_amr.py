@@ -41,10 +41,6 @@ H = 15e-6
 FLUID_DT = 5e-7     # the longest fluid step
 COURANT = 0.3
 KEPT_BED = os.path.join(os.path.dirname(os.path.abspath(__file__)), "bed-ci", "bed.dump")
-# measured 2026-12-04 when surface tension and Marangoni became the scene's default
-SURFACE_DEPTH = ("with surface tension and Marangoni on (the scene's default) the refined depth is 19.66 vs "
-                 "19.18 um uniform (+2.5 %, 0.5 um = 1/30 of a cell; LAMMPS 29 Sep 2021 / OpenFOAM 2012; +1.6 % "
-                 "on Debian trixie's releases); with them off -1.9 % (passes, fixed step)")
 
 
 def main():
@@ -71,7 +67,7 @@ def main():
     ok &= check_relative(TEST, "track width, refined 30 -> 15 um vs uniform 15 um [m]", s["track_width_m"],
                          u["track_width_m"], 0.02)
     ok &= check_relative(TEST, "track depth, refined 30 -> 15 um vs uniform 15 um [m]", s["track_depth_m"],
-                         u["track_depth_m"], 0.02, xfail=SURFACE_DEPTH)
+                         u["track_depth_m"], 0.02)
     ref, worst = fc.refinement_ledger(case)
     ok &= check_at_most(TEST, f"metal and enthalpy across each of {len(ref)} mesh changes, max |after/before - 1|",
                         worst, 1e-12)
