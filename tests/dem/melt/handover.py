@@ -10,11 +10,10 @@ with the gas, six of them across the boundary of the two ranks before the handov
 through write_restart / read_restart before it)."""
 import math
 import sys
-import tempfile
 
 from meltdem.testing.lammps_run import printed_value as value, run, thermo_rows as thermo
 from meltdem.testing.report import check_absolute, check_at_most, check_relative
-from melt_common import HEADER
+from melt_common import HEADER, LEDGER_OUTPUT, THESIS_GAS, run_through_restart
 
 np = int(sys.argv[1]) if len(sys.argv) > 1 else 1
 TEST = "dem.melt.handover" + ("" if np == 1 else f".np{np}")
@@ -33,28 +32,19 @@ else:
     # them before the handover at 1.61 ms, three before the restart
     atoms = "".join(f"create_atoms 1 single {0.001 * (i - 4):.6f} {0.0005 * (i + 1):.6f} 0\n" for i in range(n))
 melt = (f"fix m all powder/melt cp {cp} Tmelt {Tm} latent {L!r} temp {T0} "
-        f"ambient {Tf} {k} 1.6115 2.1e-5 5210.928 0 -2 0 handover {D!r}\n")
-output = """fix nve all nve/sphere
-thermo_style custom step atoms f_m[1] f_m[2] f_m[3] f_m[4] f_m[5] f_m[6]
-thermo_modify format float %.17g
-thermo 1
-"""
+        f"ambient {THESIS_GAS} handover {D!r}\n")
 text = HEADER.replace("create_box", procs + "create_box") + atoms + f"""set group all diameter {d0} density {rho}
 velocity all set 0 -2 0
 variable m0 equal mass[1]
 variable m0f format m0 %.17g
 print "MASS ${{m0f}}"
 timestep {dt}
-""" + melt + output
+""" + melt + LEDGER_OUTPUT
 if n == 1:
     _, out = run(text + "run 2000\n")
 else:
     # before the handover: write_restart, then go on in a new process from the file
-    with tempfile.TemporaryDirectory() as wd:
-        _, out = run(text + "run 1000\nwrite_restart half.restart\n", np=np, cwd=wd)
-        _, out2 = run(procs + "read_restart half.restart\ncomm_modify vel yes\nneighbor 1e-4 bin\n"
-                      f"timestep {dt}\n" + melt + output + "run 1000\n", np=np, cwd=wd)
-    out += out2
+    out = run_through_restart(text, procs, melt, dt, np, 1000, 1000)
 m = value(out, "MASS")
 rows = thermo(out)
 last = rows[-1]

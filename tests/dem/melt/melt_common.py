@@ -1,4 +1,7 @@
 """Helpers of the fix powder/melt tests: run meltdem-lmp on an input text, read thermo."""
+import tempfile
+
+from meltdem.testing.lammps_run import run
 
 
 # a single particle in a large periodic box, SI units, radius changes allowed
@@ -11,3 +14,24 @@ create_box 1 box
 comm_modify vel yes
 neighbor 1e-4 bin
 """
+
+# the Codina2019 §2.3 particle melting in the table 2.2 gas (moving with it at 2 m/s down)
+THESIS_GAS = "1500.0 100.0 1.6115 2.1e-5 5210.928 0 -2 0"
+
+# per-step thermo of the fix's six ledger columns
+LEDGER_OUTPUT = """fix nve all nve/sphere
+thermo_style custom step atoms f_m[1] f_m[2] f_m[3] f_m[4] f_m[5] f_m[6]
+thermo_modify format float %.17g
+thermo 1
+"""
+
+
+def run_through_restart(text, procs, melt, dt, np, before, after):
+    """Run text for `before` steps on np ranks, write_restart, and go on from the file in a new
+    process for `after` steps (procs, melt: the processors and fix lines to give again); returns
+    the output of both."""
+    with tempfile.TemporaryDirectory() as wd:
+        _, out = run(text + f"run {before}\nwrite_restart half.restart\n", np=np, cwd=wd)
+        _, out2 = run(procs + "read_restart half.restart\ncomm_modify vel yes\nneighbor 1e-4 bin\n"
+                      f"timestep {dt}\n" + melt + LEDGER_OUTPUT + f"run {after}\n", np=np, cwd=wd)
+    return out + out2

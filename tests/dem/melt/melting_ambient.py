@@ -8,11 +8,10 @@ heat = m cp (Tm - T0) + m L, mass = m, enthalpy = m (cp Tm + L) (eq. 2.9), momen
 halfway)."""
 import math
 import sys
-import tempfile
 
 from meltdem.testing.lammps_run import printed_value as value, run, thermo_rows as thermo
 from meltdem.testing.report import check_absolute, check_at_most, check_relative
-from melt_common import HEADER
+from melt_common import HEADER, LEDGER_OUTPUT, THESIS_GAS, run_through_restart
 
 
 def check_rel_error(what, measured, reference, tol):
@@ -36,12 +35,7 @@ else:
     atoms = "".join(f"create_atoms 1 single {(-1) ** i * 0.002 * (i + 1) / 8:.6f} {0.001 * i:.6f} 0\n"
                     for i in range(n))
 melt = (f"fix m all powder/melt cp {cp} Tmelt {Tm} latent {L!r} temp {T0} "
-        f"ambient {Tf} {k} 1.6115 2.1e-5 5210.928 0 -2 0\n")
-output = """fix nve all nve/sphere
-thermo_style custom step atoms f_m[1] f_m[2] f_m[3] f_m[4] f_m[5] f_m[6]
-thermo_modify format float %.17g
-thermo 1
-"""
+        f"ambient {THESIS_GAS}\n")
 text = HEADER.replace("create_box", procs + "create_box") + atoms + f"""
 set group all diameter {d} density {rho}
 variable vx atom {"4*(x<0)-2" if n > 1 else "0"}
@@ -50,7 +44,7 @@ variable m0 equal mass[1]
 variable m0f format m0 %.17g
 print "MASS ${{m0f}}"
 timestep {dt}
-""" + melt + output
+""" + melt + LEDGER_OUTPUT
 if n == 1:
     # halfway: the per-atom outputs [1] temperature and [2] melted fraction
     probe = """variable T equal F_m[1][1]
@@ -66,11 +60,7 @@ print "MNOW ${mmf}"
     _, out = run(text + "run 1500\n" + probe + "run 800\n")
 else:
     # halfway through melting: write_restart, then go on in a new process from the file
-    with tempfile.TemporaryDirectory() as wd:
-        _, out = run(text + "run 1000\nwrite_restart half.restart\n", np=np, cwd=wd)
-        _, out2 = run(procs + "read_restart half.restart\ncomm_modify vel yes\nneighbor 1e-4 bin\n"
-                      f"timestep {dt}\n" + melt + output + "run 1300\n", np=np, cwd=wd)
-    out += out2
+    out = run_through_restart(text, procs, melt, dt, np, 1000, 1300)
 m = value(out, "MASS")
 rows = thermo(out)
 last = rows[-1]
