@@ -99,14 +99,13 @@ def check_case(label, case, dt, reach):
     parents, ncells = refined_parents(case)
     print(f"{label}: {len(parents)} cells split, {ncells} cells; reach {reach * 1e6:g} um")
     # the mesh is updated before the second step, at t = dt
-    must_a, must_b = X0 + V * dt, X0 + V * (dt + reach)
-    may_a, may_b = must_a, must_b
+    start, end = X0 + V * dt, X0 + V * (dt + reach)
     xc = (np.arange(NX) + 0.5) * H
-    needed = xc[path_distance(xc, YB, must_a, must_b) <= 0.9 * R]
+    needed = xc[path_distance(xc, YB, start, end) <= 0.9 * R]
     got = {round(p[0] / 1e-9) for p in parents if abs(p[1] - YB) < 1e-9 and abs(p[2] - TOP_METAL_Z) < 1e-9}
     missing = sum(round(x / 1e-9) not in got for x in needed)
     off_layer = (np.abs(parents[:, 2] - TOP_METAL_Z) > 1e-9) & (np.abs(parents[:, 2] - TOP_METAL_Z - H) > 1e-9)
-    far = path_distance(parents[:, 0], parents[:, 1], may_a, may_b) > R * (1 + 1e-9)
+    far = path_distance(parents[:, 0], parents[:, 1], start, end) > R * (1 + 1e-9)
     stray = int(np.sum(far | off_layer))
     ok &= check_absolute(TEST, f"{label}: top-metal cells of the beam's row within 0.9 R of its path not refined "
                          f"(of {len(needed)})", missing, 0, 0)
@@ -115,7 +114,7 @@ def check_case(label, case, dt, reach):
                          stray, 0, 0)
     furthest = float(np.max(parents[:, 0])) if len(parents) else float("nan")
     ok &= check_absolute(TEST, f"{label}: furthest refined centre [m] vs path end + R - h/2", furthest,
-                         X0 + V * (dt + reach) + R - H / 2, H / 2)
+                         end + R - H / 2, H / 2)
     return ok
 
 
