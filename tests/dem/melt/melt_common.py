@@ -15,8 +15,11 @@ comm_modify vel yes
 neighbor 1e-4 bin
 """
 
-# the Codina2019 §2.3 particle melting in the table 2.2 gas (moving with it at 2 m/s down)
-THESIS_GAS = "1500.0 100.0 1.6115 2.1e-5 5210.928 0 -2 0"
+# the Codina2019 §2.3 particle (d, rho, cp, Tm, T0) melting in the table 2.2 gas (Tf, k), moving
+# with it at 2 m/s down; latent heat: E_latent = 0.248611 J for m = 9.069e-7 kg
+THESIS_MELTING = (600e-6, 8020.0, 48.35, 1000.0, 0.0, 1500.0, 100.0)
+THESIS_LATENT = 0.248611 / 9.069e-7
+THESIS_GAS = f"{THESIS_MELTING[5]} {THESIS_MELTING[6]} 1.6115 2.1e-5 5210.928 0 -2 0"
 
 # per-step thermo of the fix's six ledger columns
 LEDGER_OUTPUT = """fix nve all nve/sphere

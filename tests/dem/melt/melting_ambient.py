@@ -11,7 +11,7 @@ import sys
 
 from meltdem.testing.lammps_run import printed_value as value, run, thermo_rows as thermo
 from meltdem.testing.report import check_absolute, check_at_most, check_relative
-from melt_common import HEADER, LEDGER_OUTPUT, THESIS_GAS, run_through_restart
+from melt_common import HEADER, LEDGER_OUTPUT, THESIS_GAS, THESIS_LATENT, THESIS_MELTING, run_through_restart
 
 
 def check_rel_error(what, measured, reference, tol):
@@ -22,8 +22,8 @@ def check_rel_error(what, measured, reference, tol):
 
 np = int(sys.argv[1]) if len(sys.argv) > 1 else 1
 TEST = "dem.melt.melting_ambient" + ("" if np == 1 else f".np{np}")
-d, rho, cp, Tm, T0, Tf, k = 600e-6, 8020.0, 48.35, 1000.0, 0.0, 1500.0, 100.0
-L = 0.248611 / 9.069e-7  # Codina2019: E_latent = 0.248611 J for m = 9.069e-7 kg
+d, rho, cp, Tm, T0, Tf, k = THESIS_MELTING
+L = THESIS_LATENT
 dt = 1e-6
 n = 1 if np == 1 else 8
 
