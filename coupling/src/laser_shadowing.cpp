@@ -183,6 +183,8 @@ ShadowResult shade_particles(const GaussianBeam &beam, const std::vector<BeamPar
   const std::size_t ncell = static_cast<std::size_t>(n) * n;
   g.entry_depth.assign(ncell, std::numeric_limits<double>::infinity());
   g.owner.assign(ncell, -1);
+  g.nb = (n + kShadowBlock - 1) / kShadowBlock;
+  g.block_entry_depth.assign(static_cast<std::size_t>(g.nb) * g.nb, std::numeric_limits<double>::infinity());
 
   // z-buffer: each ray keeps the sphere it enters first
   const double inv_h = 1.0 / g.h;
@@ -203,7 +205,16 @@ ShadowResult shade_particles(const GaussianBeam &beam, const std::vector<BeamPar
       const int i0 = std::max(0, static_cast<int>(std::ceil((pu - chord) * inv_h + m - 0.5)));
       const int i1 = std::min(n - 1, static_cast<int>(std::floor((pu + chord) * inv_h + m - 0.5)));
       const std::size_t row = static_cast<std::size_t>(j) * n;
+      // each block's smallest entry: the smallest value ever written to it (entries only fall)
+      double *blocks = g.block_entry_depth.data() + static_cast<std::size_t>(j / kShadowBlock) * g.nb;
+      int block = i0 / kShadowBlock;
+      double block_min = std::numeric_limits<double>::infinity();
       for (int i = i0; i <= i1; ++i) {
+        if (i / kShadowBlock != block) {
+          blocks[block] = std::min(blocks[block], block_min);
+          block = i / kShadowBlock;
+          block_min = std::numeric_limits<double>::infinity();
+        }
         const double du = (i + 0.5 - m) * g.h - pu;
         const double r2 = du * du + dv * dv;
         if (!(r2 < R2)) continue;
@@ -211,8 +222,10 @@ ShadowResult shade_particles(const GaussianBeam &beam, const std::vector<BeamPar
         if (entry < g.entry_depth[row + i]) {
           g.entry_depth[row + i] = entry;
           g.owner[row + i] = static_cast<int>(k);
+          block_min = std::min(block_min, entry);
         }
       }
+      if (i0 <= i1) blocks[block] = std::min(blocks[block], block_min);
     }
   }
 
@@ -306,12 +319,14 @@ double transmitted_fraction(const ShadowResult &result, const Eigen::Vector3d &p
   const Eigen::Vector3d p = point - g.centre;
   const double depth = p.dot(g.direction), pu = p.dot(g.u), pv = p.dot(g.v);
   const double m = g.n / 2, inv_h = 1.0 / g.h;
+  const bool blocks = g.nb > 0 && g.block_entry_depth.size() == static_cast<std::size_t>(g.nb) * g.nb;
   // lattice index of a ray; those outside the grid carry no particle: lit
   auto lit_at = [&](double fi, double fj) {
     if (fi < 0 || fj < 0 || fi >= g.n || fj >= g.n) return true;
     const std::size_t idx = static_cast<std::size_t>(fj) * g.n + static_cast<std::size_t>(fi);
     return depth < g.entry_depth[idx];
   };
+  const bool single_lit = lit_at(std::floor(pu * inv_h) + m, std::floor(pv * inv_h) + m);
   if (footprint > 0.0) {
     // the rays of the (unbounded) lattice whose centres lie in the footprint disk
     const double j0 = std::ceil((pv - footprint) * inv_h + m - 0.5);
@@ -320,19 +335,58 @@ double transmitted_fraction(const ShadowResult &result, const Eigen::Vector3d &p
     const double i1 = std::floor((pu + footprint) * inv_h + m - 0.5);
     if ((j1 - j0 + 1) * (i1 - i0 + 1) > 1e8)
       bad("transmitted_fraction: footprint " + str(footprint) + " m covers more than 1e8 rays");
-    long total = 0, lit = 0;
+    // every block under the disk's bounding square starts below the point: all its rays are lit
+    // (then the answer is 1 whether or not a ray centre lies in the disk, if the nearest ray is lit)
+    const double c0 = std::max(i0, 0.0), c1 = std::min(i1, g.n - 1.0);
+    const double r0 = std::max(j0, 0.0), r1 = std::min(j1, g.n - 1.0);
+    if (single_lit && blocks) {
+      bool all_lit = true;
+      if (r0 <= r1 && c0 <= c1) {
+        const auto bj0 = static_cast<std::size_t>(r0) / kShadowBlock, bj1 = static_cast<std::size_t>(r1) / kShadowBlock;
+        const auto bi0 = static_cast<std::size_t>(c0) / kShadowBlock, bi1 = static_cast<std::size_t>(c1) / kShadowBlock;
+        for (std::size_t bj = bj0; all_lit && bj <= bj1; ++bj)
+          for (std::size_t bi = bi0; all_lit && bi <= bi1; ++bi) all_lit = depth < g.block_entry_depth[bj * g.nb + bi];
+      }
+      if (all_lit) return 1.0;
+    }
+    const double f2 = footprint * footprint;
+    auto inside = [&](double fi, double dv) {
+      const double du = (fi + 0.5 - m) * g.h - pu;
+      return !(du * du + dv * dv > f2);
+    };
+    long total = 0, dark = 0;
     for (double fj = j0; fj <= j1; ++fj) {
       const double dv = (fj + 0.5 - m) * g.h - pv;
-      for (double fi = i0; fi <= i1; ++fi) {
-        const double du = (fi + 0.5 - m) * g.h - pu;
-        if (du * du + dv * dv > footprint * footprint) continue;
-        ++total;
-        if (lit_at(fi, fj)) ++lit;
+      const double rem = f2 - dv * dv;
+      if (rem < 0.0) continue;  // dv^2 > f^2: no ray of this row lies in the disk
+      // the row's chord, its ends settled by the membership test itself
+      const double chord = std::sqrt(rem);
+      double a = std::max(i0, std::ceil((pu - chord) * inv_h + m - 0.5));
+      double b = std::min(i1, std::floor((pu + chord) * inv_h + m - 0.5));
+      while (a <= b && !inside(a, dv)) ++a;
+      while (a > i0 && inside(a - 1, dv)) --a;
+      while (b >= a && !inside(b, dv)) --b;
+      while (b < i1 && inside(b + 1, dv)) ++b;
+      if (b < a) continue;
+      total += static_cast<long>(b - a + 1);
+      if (fj < 0 || fj >= g.n) continue;  // off the grid: lit
+      const std::size_t row = static_cast<std::size_t>(fj) * g.n;
+      const std::size_t lo = static_cast<std::size_t>(std::max(a, 0.0));
+      const double hi_d = std::min(b, g.n - 1.0);
+      if (hi_d < static_cast<double>(lo)) continue;
+      const std::size_t hi = static_cast<std::size_t>(hi_d);
+      const double *bmin =
+          blocks ? g.block_entry_depth.data() + static_cast<std::size_t>(fj) / kShadowBlock * g.nb : nullptr;
+      for (std::size_t i = lo; i <= hi;) {
+        const std::size_t end = std::min(hi, (i / kShadowBlock + 1) * kShadowBlock - 1);
+        if (!(bmin && depth < bmin[i / kShadowBlock]))
+          for (std::size_t k = i; k <= end; ++k) dark += depth < g.entry_depth[row + k] ? 0 : 1;
+        i = end + 1;
       }
     }
-    if (total > 0) return static_cast<double>(lit) / total;
+    if (total > 0) return static_cast<double>(total - dark) / total;
   }
-  return lit_at(std::floor(pu * inv_h) + m, std::floor(pv * inv_h) + m) ? 1.0 : 0.0;
+  return single_lit ? 1.0 : 0.0;
 }
 
 std::vector<TransmittedRay> transmitted_rays(const ShadowResult &result)

@@ -86,7 +86,12 @@ struct ShadowGrid {
   std::vector<double> g;            // 1D cell fractions, ray (i, j) carries P g[i] g[j]
   std::vector<double> entry_depth;  // per ray (j n + i): first sphere entry, +inf if none
   std::vector<int> owner;           // per ray: index of the particle hit first, -1 if none
+  // the smallest entry depth in each square block of kShadowBlock^2 rays (row-major, nb per
+  // side; +inf where no ray is hit): a point above it is lit by every ray of the block
+  int nb = 0;
+  std::vector<double> block_entry_depth;
 };
+inline constexpr int kShadowBlock = 16;  // rays per block side
 
 struct ShadowResult {
   std::vector<double> absorbed;     // W per particle: eta * intercepted
