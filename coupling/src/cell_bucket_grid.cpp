@@ -54,9 +54,11 @@ void CellBucketGrid::build(const std::vector<Eigen::Vector3d> &lo, const std::ve
   const std::size_t nb = std::size_t(n_[0]) * n_[1] * n_[2];
   std::vector<long> count(nb + 1, 0);
   int first[3], last[3];
+  first_bucket_.resize(ncells);
   for (int pass = 0; pass < 2; ++pass) {
     for (std::size_t c = 0; c < ncells; ++c) {
       bucket_range(lo[c], hi[c], first, last);
+      if (pass == 0) first_bucket_[c] = {first[0], first[1], first[2]};
       for (int k = first[2]; k <= last[2]; ++k)
         for (int j = first[1]; j <= last[1]; ++j)
           for (int i = first[0]; i <= last[0]; ++i) {
@@ -129,13 +131,15 @@ void CellBucketGrid::cells_in_box(const Eigen::Vector3d &lo, const Eigen::Vector
         const std::size_t b = (std::size_t(k) * n_[1] + j) * n_[0] + i;
         for (long m = offsets_[b]; m < offsets_[b + 1]; ++m) {
           const std::size_t c = std::size_t(cells_[std::size_t(m)]);
+          // a cell binned in several buckets of the range is taken in the lowest of them only
+          const std::array<int, 3> &f = first_bucket_[c];
+          if (std::max(f[0], first[0]) != i || std::max(f[1], first[1]) != j || std::max(f[2], first[2]) != k) continue;
           if (lo_[c][0] <= hi[0] && hi_[c][0] >= lo[0] && lo_[c][1] <= hi[1] && hi_[c][1] >= lo[1] &&
               lo_[c][2] <= hi[2] && hi_[c][2] >= lo[2])
             cells.push_back(long(c));
         }
       }
   std::sort(cells.begin() + std::ptrdiff_t(start), cells.end());
-  cells.erase(std::unique(cells.begin() + std::ptrdiff_t(start), cells.end()), cells.end());
 }
 
 double CellBucketGrid::convexity_defect(long c, const std::vector<Eigen::Vector3d> &points) const

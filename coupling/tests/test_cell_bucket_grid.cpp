@@ -41,6 +41,17 @@ struct ShearedMesh {
     const int i = find(xs, u[0]), j = find(ys, u[1]), k = find(zs, u[2]);
     return i < 0 || j < 0 || k < 0 ? -1 : cell(i, j, k);
   }
+  // cell (i, j, k)'s bounding box
+  void box(int i, int j, int k, Eigen::Vector3d &lo, Eigen::Vector3d &hi) const
+  {
+    const auto corner = [&](int a, int b, int c) { return map({xs[a], ys[b], zs[c]}); };
+    lo = hi = corner(i, j, k);
+    for (int d = 0; d < 8; ++d) {
+      const Eigen::Vector3d q = corner(i + (d & 1), j + (d >> 1 & 1), k + (d >> 2 & 1));
+      lo = lo.cwiseMin(q);
+      hi = hi.cwiseMax(q);
+    }
+  }
   // every cell's box, its 6 faces (owner: the lower cell; boundary faces owned by their cell)
   void build(CellBucketGrid &g) const
   {
@@ -52,12 +63,7 @@ struct ShearedMesh {
       for (int j = 0; j < ny; ++j)
         for (int i = 0; i < nx; ++i) {
           const long c = cell(i, j, k);
-          lo[c] = hi[c] = corner(i, j, k);
-          for (int d = 0; d < 8; ++d) {
-            const Eigen::Vector3d q = corner(i + (d & 1), j + (d >> 1 & 1), k + (d >> 2 & 1));
-            lo[c] = lo[c].cwiseMin(q);
-            hi[c] = hi[c].cwiseMax(q);
-          }
+          box(i, j, k, lo[c], hi[c]);
         }
     // faces normal to each lattice axis a at plane index m, between cells m-1 and m along a
     for (int a = 0; a < 3; ++a) {
@@ -142,6 +148,39 @@ TEST(CellBucketGrid, BoxQueryHoldsEveryCellTouched)
       if (want >= 0) EXPECT_TRUE(std::binary_search(cells.begin(), cells.end(), want));
     }
   }
+}
+
+// the sheared cells' boxes span several buckets each: every cell whose box overlaps the query
+// box is listed exactly once, and no other
+TEST(CellBucketGrid, BoxQueryListsEachOverlappingCellOnce)
+{
+  ShearedMesh m;
+  CellBucketGrid g;
+  m.build(g);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-0.1, 1.1);
+  int differ = 0;
+  std::size_t listed = 0;
+  for (int n = 0; n < 300; ++n) {
+    const Eigen::Vector3d c = ShearedMesh::map({u(rng), 0.8 * u(rng), 0.5 * u(rng)});
+    const Eigen::Vector3d r(0.3 * u(rng) + 0.03, 0.2 * u(rng) + 0.03, 0.1 * u(rng) + 0.03);
+    std::vector<long> cells, want;
+    g.cells_in_box(c - r, c + r, cells);
+    for (int k = 0; k < m.nz; ++k)
+      for (int j = 0; j < m.ny; ++j)
+        for (int i = 0; i < m.nx; ++i) {
+          Eigen::Vector3d lo, hi;
+          m.box(i, j, k, lo, hi);
+          if ((lo.array() <= (c + r).array()).all() && (hi.array() >= (c - r).array()).all())
+            want.push_back(m.cell(i, j, k));
+        }
+    std::sort(want.begin(), want.end());
+    differ += cells == want ? 0 : 1;
+    listed += cells.size();
+  }
+  std::printf("300 box queries, %zu cells listed, %d differ from the brute-force list\n", listed, differ);
+  EXPECT_EQ(differ, 0);
+  EXPECT_GT(listed, 3000u);
 }
 
 TEST(CellBucketGrid, ConvexCellsHaveNoDefect)

@@ -7,6 +7,7 @@
 // tetrahedral decomposition.
 #include <Eigen/Core>
 
+#include <array>
 #include <vector>
 
 namespace meltdem::coupling {
@@ -44,7 +45,8 @@ class CellBucketGrid {
   int n_[3] = {0, 0, 0};
   std::vector<long> offsets_, cells_;  // bucket b's cells: cells_[offsets_[b] .. offsets_[b + 1]), ascending
   std::vector<Eigen::Vector3d> lo_, hi_;
-  std::vector<Eigen::Vector4d> planes_;  // unit outward normal and offset n.x = d, per face
+  std::vector<std::array<int, 3>> first_bucket_;  // per cell: the lowest bucket it is binned in
+  std::vector<Eigen::Vector4d> planes_;           // unit outward normal and offset n.x = d, per face
   std::vector<long> cell_offsets_, cell_faces_;
   double tol_ = 0.0;  // how far outside a plane still counts as on it [m]
 };
