@@ -229,12 +229,19 @@ ShadowResult shade_particles(const GaussianBeam &beam, const std::vector<BeamPar
     }
   }
 
+  // each row's runs of rays with one owner are summed before they are booked: consecutive
+  // rays mostly share their particle, and a sum into memory per ray waits on the last one
   res.intercepted.assign(particles.size(), 0.0);
   for (int j = 0; j < n; ++j) {
-    const std::size_t row = static_cast<std::size_t>(j) * n;
-    for (int i = 0; i < n; ++i) {
-      const int o = g.owner[row + i];
-      if (o >= 0) res.intercepted[o] += P * g.g[i] * g.g[j];
+    const int *owner = g.owner.data() + static_cast<std::size_t>(j) * n;
+    for (int i = 0; i < n;) {
+      const int o = owner[i];
+      double run = 0.0;
+      do {
+        run += P * g.g[i] * g.g[j];
+        ++i;
+      } while (i < n && owner[i] == o);
+      if (o >= 0) res.intercepted[o] += run;
     }
   }
   res.absorbed.resize(particles.size());

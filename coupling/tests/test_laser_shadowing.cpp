@@ -2,6 +2,7 @@
 // against the analytic power through a disk, shadowing, symmetry, and the balance
 // sum(absorbed) + eta (power reaching the continuum) = eta P.
 #include "meltdem/coupling/laser_shadowing.h"
+#include "meltdem/coupling/exact_sum.h"
 #include "validation_report.h"
 
 #include <algorithm>
@@ -200,8 +201,10 @@ TEST(LaserShadowing, ManyParticlesBalanceCloses)
   for (int k = 0; k < 300; ++k) ps.push_back({beam_point(b, up(rng), pos(rng), pos(rng)), rad(rng)});
   const ShadowResult r = shade_particles(b, ps);
   const auto rays = transmitted_rays(r);
-  double ray_power = 0.0;
-  for (const auto &ray : rays) ray_power += ray.power;
+  // (a million rays: summed compensated, so the sum's own round-off stays below the tolerance)
+  ExactSum ray_sum;
+  for (const auto &ray : rays) ray_sum.add(ray.power);
+  const double ray_power = ray_sum.value();
   const double continuum = ray_power + r.tail_power;  // what reaches the continuum, ray by ray
   std::cout << "300 particles: intercepted " << r.intercepted_total << " W of " << P << " W, " << rays.size()
             << " transmitted rays, tail " << r.tail_power << " W\n";
@@ -218,14 +221,14 @@ TEST(LaserShadowing, ManyParticlesBalanceCloses)
   // transmitted_fraction agrees with the rays: summing the lit rays' powers (probed deep
   // below the bed) gives the transmitted power
   const ShadowGrid &g = r.grid;
-  double lit = 0.0;
+  ExactSum lit;
   for (int j = 0; j < g.n; ++j)
     for (int i = 0; i < g.n; ++i) {
       const Eigen::Vector3d x =
           g.centre + 10 * w * g.direction + (i + 0.5 - g.n / 2) * g.h * g.u + (j + 0.5 - g.n / 2) * g.h * g.v;
-      lit += transmitted_fraction(r, x) * P * g.g[i] * g.g[j];
+      lit.add(transmitted_fraction(r, x) * P * g.g[i] * g.g[j]);
     }
-  expect_relative("sum of lit ray powers via transmitted_fraction [W]", lit, ray_power, 1e-12);
+  expect_relative("sum of lit ray powers via transmitted_fraction [W]", lit.value(), ray_power, 1e-12);
   // an independent estimate: Monte Carlo rays drawn from the Gaussian, each intercepted
   // by the sphere it enters first (brute force over all particles)
   std::normal_distribution<double> gauss(0.0, 0.5 * w);  // standard deviation w/2
