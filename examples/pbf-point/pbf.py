@@ -406,7 +406,9 @@ def run(case, np_=1, timeout=None):
     t0 = time.time()
     fc.run(["blockMesh"], case, "log.blockMesh")
     if np_ > 1:
-        cc.decompose(case, np_, (np_, 1, 1))
+        # ranks side by side across the scan (z): each holds its share of the beam, the pool and
+        # the refined cells while the beam moves along x (a split along x leaves them on one rank)
+        cc.decompose(case, np_, (1, 1, np_))
     cmd = fc.solver_command(np_)
     env = dict(os.environ, **fc.MPIRUN_ENV, PWD=os.path.abspath(case))
     with open(os.path.join(case, "log.meltdemFoam"), "w") as log:

@@ -184,6 +184,45 @@ def processor_dirs(case):
     return sorted(d for d in os.listdir(case) if d.startswith("processor") and d[9:].isdigit())
 
 
+def scan_axes(case):
+    """The axes a moving laser of the case (constant/meltdemProperties laser{}) travels along or
+    shines along: {0, 1, 2} indices; empty without a laser or when it cannot be read."""
+    try:
+        laser = fd.read(os.path.join(case, "constant", "meltdemProperties")).get("laser")
+    except (OSError, fd.FoamDictError):
+        return set()
+    if not isinstance(laser, dict):
+        return set()
+    moves = []
+    for key in ("velocity", "direction"):
+        v = fd.value(laser, key)
+        if v:
+            moves.append(fd.vector(v[0]))
+    tracks = fd.value(laser, "tracks")
+    for track in (tracks[0] if tracks and isinstance(tracks[0], list) else []):
+        if isinstance(track, list) and len(track) == 2:
+            a, b = fd.vector(track[0]), fd.vector(track[1])
+            if a and b:
+                moves.append(tuple(y - x for x, y in zip(a, b)))
+    return {k for v in moves if v for k in range(3) if v[k] != 0.0}
+
+
+def decomposition_split(case, np_, mesh_box):
+    """(nx, ny, nz) of the simple decomposition meltdem run writes: np_ slabs stacked along the
+    mesh's longest side, except along the laser's scan and beam axes where another side is left
+    (slabs across the scan each hold a share of the beam, the pool and its refined cells; slabs
+    along it leave them on one rank, slabs along the beam put substrate and gas apart)."""
+    axis = 0
+    if mesh_box:
+        span = [high - low for low, high in zip(*mesh_box)]
+        avoid = scan_axes(case)
+        free = [k for k in range(3) if k not in avoid] or [0, 1, 2]
+        axis = max(free, key=lambda k: span[k])
+    split = [1, 1, 1]
+    split[axis] = np_
+    return tuple(split)
+
+
 def decompose(case, np_, mesh_box):
     rel = "system/decomposeParDict"
     p = os.path.join(case, rel)
@@ -194,19 +233,13 @@ def decompose(case, np_, mesh_box):
         except (OSError, fd.FoamDictError):
             n = None
     if n is None or int(n) != np_:
-        # simple decomposition along the longest side of the mesh
-        axis = 0
-        if mesh_box:
-            span = [high - low for low, high in zip(*mesh_box)]
-            axis = span.index(max(span))
-        split = [1, 1, 1]
-        split[axis] = np_
+        split = decomposition_split(case, np_, mesh_box)
         with open(p, "w") as f:
             f.write("FoamFile { version 2.0; format ascii; class dictionary; object decomposeParDict; }\n"
                     f"// written by meltdem run --np {np_}\nnumberOfSubdomains {np_};\nmethod simple;\n"
                     f"coeffs {{ n ({split[0]} {split[1]} {split[2]}); }}\n"
                     f"simpleCoeffs {{ n ({split[0]} {split[1]} {split[2]}); delta 0.001; }}\n")
-        say(f"wrote {rel} ({np_} subdomains along {'xyz'[axis]})")
+        say(f"wrote {rel} ({np_} subdomains along {'xyz'[split.index(np_)]})")
     tool(["decomposePar", "-force"], case, "log.decomposePar")
 
 
