@@ -38,8 +38,8 @@ namespace mc = meltdem::coupling;
 
 FixPowderMelt::FixPowderMelt(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), drag_model(mc::DragModel::Thesis), T0(0.0), ambient_flag(0), provider(nullptr), in_setup(0),
-    solid_flag(0), solid_estar(0.0), solid_alpha(0.0), interval_start(0), handover_d(0.0), melt(nullptr), coef(nullptr),
-    coef_tol(0.01), vector_dirty(1)
+    solid_flag(0), solid_estar(0.0), solid_alpha(0.0), interval_start(0), handover_d(0.0), melt(nullptr),
+    output(nullptr), coef(nullptr), coef_tol(0.01), vector_dirty(1)
 {
   if (strcmp(update->unit_style, "si") != 0)
     error->all(FLERR, "Fix powder/melt requires units si (its heat and drag laws use SI values)");
@@ -164,7 +164,7 @@ FixPowderMelt::FixPowderMelt(LAMMPS *lmp, int narg, char **arg) :
   global_freq = 1;
   extvector = 1;
   peratom_flag = 1;
-  size_peratom_cols = 2;
+  size_peratom_cols = NOUT;
   peratom_freq = 1;
   restart_global = 1;
   restart_peratom = 1;
@@ -175,6 +175,7 @@ FixPowderMelt::FixPowderMelt(LAMMPS *lmp, int narg, char **arg) :
 
   held = nullptr;
   held_flag = 0;
+  heated_nlocal = -1;
   maxexchange = NCOL + NHELD + NCOEF;  // per atom in Comm::exchange()
   grow_arrays(atom->nmax);
   atom->add_callback(Atom::GROW);
@@ -189,6 +190,7 @@ FixPowderMelt::~FixPowderMelt()
   atom->delete_callback(id, Atom::GROW);
   atom->delete_callback(id, Atom::RESTART);
   memory->destroy(melt);
+  memory->destroy(output);
   memory->destroy(held);
   memory->destroy(coef);
 }
@@ -297,6 +299,7 @@ void FixPowderMelt::setup(int vflag)
   }
   // the forces at the start of a run: not an impulse of the interval yet (the steps'
   // own post_force books each step's drag impulse once)
+  heated_nlocal = -1;
   in_setup = 1;
   post_force(vflag);
   in_setup = 0;
@@ -508,6 +511,8 @@ void FixPowderMelt::post_force(int /*vflag*/)
   const double dt = update->dt;
 
   mc::FluidState fluid;
+  mc::ExactSum held_heat;  // the held heat steps' heat, booked after the loop (kept in registers)
+  int nheated = 0;
   for (int i = 0; i < nlocal; i++) {
     // (held coefficients belong to a solid particle of the group: tested first)
     double s2 = -1.0;
@@ -523,24 +528,32 @@ void FixPowderMelt::post_force(int /*vflag*/)
     } else if (!(holds(i, radius, dt) && (s2 = held_slip2(i, v[i])) >= 0.0)) {
       // (re)evaluate: a new interval, a new size, or the slip left the window
       release(i);
+      coef[i][C_HEATED] = 0.0;
       if (!(mask[i] & groupbit) || melt[i][MOLTEN] != 0.0 || !fluid_at(i, fluid)) continue;
       parcel_state(i, fluid);
       s2 = hold_coefficients(i, fluid, dt);
     }
     if (s2 >= 0.0) {
-      // held coefficients: drag against the parcel's velocity now, buoyancy with g now
+      // held coefficients: drag against the parcel's velocity now, buoyancy with g now, and the
+      // heat step with the same slip (the step's mid-point velocity, as the drag)
       double *c = coef[i];
-      const double beta = held_drag_coefficient(i, s2);
+      const bool heats = c[C_SHARE] != 0.0;
+      const double y = c[C_BETA1] != 0.0 || heats ? mc::held_variable(s2) : c[C_Y0];
+      const double beta = held_drag_at(c, y);
       for (int k = 0; k < 3; k++) {
         const double drag = beta * (c[C_PUX + k] - v[i][k]);
         c[C_PUX + k] -= drag * c[C_DTMF];
         f[i][k] += drag + c[C_VB] * g[k];
         c[C_IDX + k] += drag * dt;
       }
+      const bool heated = !heats || held_heat_step(i, rmass[i], y, held_heat);
+      c[C_HEATED] = heated ? 1.0 : 0.0;
+      nheated += heated;
       continue;
     }
     // every step: light, solid-metal contact, implicit heat, and the setup's forces
     release(i);
+    if (!in_setup) coef[i][C_HEATED] = 0.0;
     if (!(mask[i] & groupbit) || melt[i][MOLTEN] != 0.0) continue;
     if (!fluid_at(i, fluid)) continue;
     parcel_state(i, fluid);
@@ -572,12 +585,18 @@ void FixPowderMelt::post_force(int /*vflag*/)
       if (!in_setup) melt[i][I_DX + k] += F.drag[k] * dt;
     }
   }
-  if (!in_setup) interval_start = 0;
+  if (!in_setup) {
+    interval_start = 0;
+    ledger[5].add(held_heat.hi());
+    ledger[5].add(held_heat.lo());
+    heated_nlocal = nheated == nlocal ? nlocal : -1;
+  }
 }
 
 /* ----------------------------------------------------------------------
-   heating and melting (eq. 2.3, 2.9, 2.13) with the full-step velocity; book what
-   is handed over (eq. 2.3, 2.9, 2.11) and schedule the deletion of molten particles
+   heating and melting (eq. 2.3, 2.9, 2.13) with the full-step velocity of the particles
+   post_force did not heat; book what is handed over (eq. 2.3, 2.9, 2.11) and schedule the
+   deletion of molten particles
 ------------------------------------------------------------------------- */
 
 void FixPowderMelt::end_of_step()
@@ -591,35 +610,13 @@ void FixPowderMelt::end_of_step()
   double *rmass = atom->rmass;
   int *mask = atom->mask;
   const double dt = update->dt;
-  const double hm = mat.cp * mat.Tmelt;
 
   int nmolten = 0;
-  mc::ExactSum held_heat;  // the held steps' heat, booked after the loop (kept in registers)
   mc::FluidState fluid;
-  for (int i = 0; i < nlocal && (provider || held_flag); i++) {
-    // (held coefficients belong to a solid particle of the group: tested first)
-    double s2 = 0.0;
-    if (holds(i, radius, dt) && (coef[i][C_SHARE] == 0.0 || (s2 = held_slip2(i, v[i])) >= 0.0)) {
-      // held coefficients: the sensible heat step of heat_melt_step(_two_body) while it stays
-      // below melting (nothing to do without heat exchange or without a difference)
-      double *c = coef[i];
-      if (c[C_SHARE] == 0.0) continue;
-      const double h = melt[i][HSPEC];
-      const double T = h / mat.cp, D0 = c[C_PT] - T;
-      if (D0 == 0.0) continue;
-      const double y = mc::held_variable(s2);
-      const double T_new = T - c[C_SHARE] * D0 * (c[C_E10] + c[C_E11] * (y - c[C_Y0]));
-      const double h_new = mat.cp * T_new;
-      if (h < hm && h_new < hm) {
-        const double heat = rmass[i] * (h_new - h);
-        if (c[C_CF] > 0.0) c[C_PT] -= heat / c[C_CF];
-        held_heat.add(heat);
-        melt[i][HSPEC] = h_new;
-        c[C_IHEAT] += heat;
-        melt[i][TEMP] = T_new;  // below melting
-        continue;
-      }
-    }
+  // (every particle took its held step in post_force: nothing to do)
+  const bool any = (provider || held_flag) && heated_nlocal != nlocal;
+  for (int i = 0; i < nlocal && any; i++) {
+    if (coef[i][C_HEATED] != 0.0) continue;  // post_force took its held heat step
     release(i);
     if (!(mask[i] & groupbit) || melt[i][MOLTEN] != 0.0) continue;
     if (melt[i][MASS0] <= 0.0) melt[i][MASS0] = rmass[i];  // inserted during the run
@@ -710,9 +707,6 @@ void FixPowderMelt::end_of_step()
     refresh_output(i);
   }
 
-  ledger[5].add(held_heat.hi());
-  ledger[5].add(held_heat.lo());
-
   int nmolten_all = 0;
   MPI_Allreduce(&nmolten, &nmolten_all, 1, MPI_INT, MPI_SUM, world);
   if (nmolten_all) next_reneighbor = update->ntimestep + 1;
@@ -728,6 +722,7 @@ void FixPowderMelt::refresh_output(int i)
     melt[i][FRAC] = 1.0;
   else
     melt[i][FRAC] = melt[i][MASS0] > 0.0 ? 1.0 - atom->rmass[i] / melt[i][MASS0] : 0.0;
+  copy_output(i);
 }
 
 /* ---------------------------------------------------------------------- */
@@ -740,6 +735,7 @@ void FixPowderMelt::set_particle_temperature(int i, double T)
     error->one(FLERR, "Fix powder/melt: particle temperature {} outside [0, Tmelt = {}]", T, mat.Tmelt);
   melt[i][HSPEC] = mc::specific_enthalpy(mat, T);
   melt[i][TEMP] = T;
+  copy_output(i);
 }
 
 /* ----------------------------------------------------------------------
@@ -797,9 +793,10 @@ void FixPowderMelt::restart(char *buf)
 void FixPowderMelt::grow_arrays(int nmax)
 {
   memory->grow(melt, nmax, NCOL, "powder/melt:melt");
+  memory->grow(output, nmax, NOUT, "powder/melt:output");
   memory->grow(held, nmax, NHELD, "powder/melt:held");
   memory->grow(coef, nmax, NCOEF, "powder/melt:coef");
-  array_atom = melt;
+  array_atom = output;
 }
 
 void FixPowderMelt::copy_arrays(int i, int j, int /*delflag*/)
@@ -807,6 +804,7 @@ void FixPowderMelt::copy_arrays(int i, int j, int /*delflag*/)
   for (int k = 0; k < NCOL; k++) melt[j][k] = melt[i][k];
   for (int k = 0; k < NHELD; k++) held[j][k] = held[i][k];
   for (int k = 0; k < NCOEF; k++) coef[j][k] = coef[i][k];
+  copy_output(j);
 }
 
 // new atoms start at temp T0; the initial mass is taken at the first step, after the
@@ -815,6 +813,7 @@ void FixPowderMelt::set_arrays(int i)
 {
   melt[i][TEMP] = T0;
   melt[i][FRAC] = 0.0;
+  copy_output(i);
   melt[i][HSPEC] = mat.cp * T0;
   melt[i][MASS0] = 0.0;
   melt[i][MOLTEN] = 0.0;
@@ -822,6 +821,7 @@ void FixPowderMelt::set_arrays(int i)
   held[i][HELD_SET] = 0.0;
   held[i][HELD_BY] = -1.0;
   coef[i][C_STATE] = 0.0;
+  coef[i][C_HEATED] = 0.0;
 }
 
 int FixPowderMelt::pack_exchange(int i, double *buf)
@@ -837,6 +837,7 @@ int FixPowderMelt::unpack_exchange(int nlocal, double *buf)
   for (int k = 0; k < NCOL; k++) melt[nlocal][k] = buf[k];
   for (int k = 0; k < NHELD; k++) held[nlocal][k] = buf[NCOL + k];
   for (int k = 0; k < NCOEF; k++) coef[nlocal][k] = buf[NCOL + NHELD + k];
+  copy_output(nlocal);
   return NCOL + NHELD + NCOEF;
 }
 
@@ -864,6 +865,7 @@ void FixPowderMelt::unpack_restart(int nlocal, int nth)
   const bool current = stored == NCOL + NCOEF + NHELD;
   const int columns = current ? NCOL : std::min(stored, static_cast<int>(NCOL_BEFORE_MARK));
   for (int k = 0; k < NCOL; k++) melt[nlocal][k] = k < columns ? extra[nlocal][m++] : 0.0;
+  copy_output(nlocal);
   coef[nlocal][C_STATE] = 0.0;
   if (current) {
     for (int k = 0; k < NCOEF; k++) coef[nlocal][k] = extra[nlocal][m++];
@@ -883,8 +885,9 @@ int FixPowderMelt::maxsize_restart()
 
 double FixPowderMelt::memory_usage()
 {
-  return (double)atom->nmax * (NCOL + NHELD + NCOEF) * sizeof(double) + (double)tag_order.capacity() * sizeof(int) +
-         (double)tag_rank.capacity() * sizeof(int) + (double)order_tags.capacity() * sizeof(tagint);
+  return (double)atom->nmax * (NCOL + NOUT + NHELD + NCOEF) * sizeof(double) +
+         (double)tag_order.capacity() * sizeof(int) + (double)tag_rank.capacity() * sizeof(int) +
+         (double)order_tags.capacity() * sizeof(tagint);
 }
 
 /* ----------------------------------------------------------------------

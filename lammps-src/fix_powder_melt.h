@@ -171,6 +171,15 @@ class FixPowderMelt : public Fix {
   bool fluid_at(int i, meltdem::coupling::FluidState &out) const;
 
   double **melt;  // per-atom state, columns above
+  // the per-atom output (array_atom): TEMP and FRAC, a copy in an array of exactly its two
+  // columns, as LAMMPS reads F_ID[I][J] with the stride size_peratom_cols
+  enum { NOUT = 2 };
+  double **output;
+  inline void copy_output(int i)
+  {
+    output[i][0] = melt[i][TEMP];
+    output[i][1] = melt[i][FRAC];
+  }
 
   // per-atom exchange coefficients held over the sub-steps of an interval
   // (meltdem/coupling/held_exchange.h); they travel with the atom and are in restart files, so
@@ -183,7 +192,8 @@ class FixPowderMelt : public Fix {
   // and step they hold for. While held, the
   // columns a held step changes live here (C_PUX.. = P_UX.., C_PT = P_T, C_IDX.. = I_DX..,
   // C_IHEAT = I_HEAT) and go back to melt when released (release()), so a held step reads and
-  // writes three cache lines of this row and one of melt
+  // writes three cache lines of this row and one of melt. C_HEATED 1: post_force took this
+  // step's held heat step (written by every post_force of a run, read by end_of_step)
   enum {
     C_STATE,
     C_D,
@@ -208,11 +218,12 @@ class FixPowderMelt : public Fix {
     C_CF,
     C_PT,
     C_IHEAT,
-    C_SPARE,
+    C_HEATED,
     NCOEF
   };
   double **coef;
-  double coef_tol;  // keyword coefficient_tolerance (0: every step; default 0.01)
+  int heated_nlocal;  // nlocal where post_force took every particle's held step this step, else -1
+  double coef_tol;    // keyword coefficient_tolerance (0: every step; default 0.01)
   // evaluate particle i's coefficients for the fluid it sees (after parcel_state) and step dt;
   // returns its squared slip, or -1 where it is evaluated every step
   double hold_coefficients(int i, const meltdem::coupling::FluidState &fluid, double dt);
@@ -255,7 +266,33 @@ class FixPowderMelt : public Fix {
   {
     const double *c = coef[i];
     const double y = c[C_BETA1] == 0.0 ? c[C_Y0] : meltdem::coupling::held_variable(s2);
+    return held_drag_at(c, y);
+  }
+  // the same at y = s^(1/2) (any finite y where the slope is 0)
+  static inline double held_drag_at(const double *c, double y)
+  {
     return std::min(c[C_BETA0] + c[C_BETA1] * (y - c[C_Y0]), c[C_CAP]);
+  }
+  // particle i's (mass m) held heat step at y = s^(1/2) (the sensible heat step of
+  // heat_melt_step(_two_body) while it stays below melting), its heat added to sum; false where
+  // the step would reach melting (the full step takes it then)
+  inline bool held_heat_step(int i, double m, double y, meltdem::coupling::ExactSum &sum)
+  {
+    double *c = coef[i];
+    const double h = melt[i][HSPEC];
+    const double T = melt[i][TEMP], D0 = c[C_PT] - T;
+    if (D0 == 0.0) return true;
+    const double T_new = T - c[C_SHARE] * D0 * (c[C_E10] + c[C_E11] * (y - c[C_Y0]));
+    const double h_new = mat.cp * T_new;
+    const double hm = mat.cp * mat.Tmelt;
+    if (!(h < hm && h_new < hm)) return false;
+    const double heat = m * (h_new - h);
+    if (c[C_CF] > 0.0) c[C_PT] -= heat / c[C_CF];
+    sum.add(heat);
+    melt[i][HSPEC] = h_new;
+    c[C_IHEAT] += heat;
+    melt[i][TEMP] = output[i][0] = T_new;  // below melting
+    return true;
   }
   // the squared slip of particle i (velocity v) against its parcel; negative when outside the
   // held window
