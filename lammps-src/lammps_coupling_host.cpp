@@ -10,6 +10,7 @@
 
 #include "atom.h"
 #include "domain.h"
+#include "exceptions.h"
 #include "fix.h"
 #include "input.h"
 #include "lammps.h"
@@ -84,7 +85,11 @@ template <typename Call> void lammps_call(MPI_Comm comm, int me, const std::stri
     while (!what.empty() && what.back() == '\n') what.pop_back();
     if (!from_lammps || me != 0) std::fprintf(stderr, "%s%s\n", from_lammps ? "" : "ERROR: ", what.c_str());
     if (me == 0) std::fprintf(stderr, "Last command: %s\n", command.c_str());
+    std::fflush(stdout);
     std::fflush(stderr);
+    // error->all throws on every rank: all have written their lines before any rank aborts
+    const auto *collective = dynamic_cast<const LAMMPSException *>(&e);
+    if (collective && !dynamic_cast<const LAMMPSAbortException *>(&e)) MPI_Barrier(comm);
     MPI_Abort(comm, 1);
   }
 }

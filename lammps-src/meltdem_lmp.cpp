@@ -8,6 +8,7 @@
 #include "meltdem_styles.h"
 
 #include "accelerator_kokkos.h"
+#include "exceptions.h"
 #include "input.h"
 #include "lammps.h"
 #include "lmppython.h"
@@ -87,6 +88,25 @@ int main(int argc, char **argv)
     else
       meltdem::run_with_checkpoints(lammps, input_file, checkpoint_dir, every, resume);
     delete lammps;
+  } catch (LAMMPSAbortException &ae) {
+    // error->one (LAMMPS since 2023 throws; older builds abort inside LAMMPS): only this rank
+    // knows; its message and what is buffered go out before the abort
+    const std::string what = ae.what();
+    fprintf(stderr, "%s%s", what.rfind("ERROR", 0) == 0 ? "" : "ERROR: ", what.c_str());
+    if (what.empty() || what.back() != '\n') fprintf(stderr, "\n");
+    fflush(stdout);
+    fflush(stderr);
+    MPI_Abort(MPI_COMM_WORLD, 1);
+    return 1;
+  } catch (LAMMPSException &) {
+    // error->all: every rank is here and rank 0 printed the message, so the job ends as stock
+    // lmp's does, without an abort that could kill rank 0 before its output is forwarded
+    KokkosLMP::finalize();
+    Python::finalize();
+    fflush(stdout);
+    MPI_Barrier(lammps_comm);
+    MPI_Finalize();
+    return 1;
   } catch (fmt::format_error &fe) {
     fprintf(stderr, "fmt::format_error: %s\n", fe.what());
     KokkosLMP::finalize();
@@ -96,6 +116,7 @@ int main(int argc, char **argv)
   } catch (std::exception &e) {
     // what a style did not turn into a LAMMPS error: said as one, not as an abort
     fprintf(stderr, "ERROR: %s\n", e.what());
+    fflush(stdout);
     fflush(stderr);
     MPI_Abort(MPI_COMM_WORLD, 1);
     return 1;
