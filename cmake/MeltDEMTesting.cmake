@@ -4,6 +4,14 @@ set(MELTDEM_REPORT_DIR "${CMAKE_BINARY_DIR}/validation-report")
 file(MAKE_DIRECTORY "${MELTDEM_REPORT_DIR}")
 
 function(meltdem_test_environment test)
+  # a temporary folder per test: Open MPI 4's isolated singletons (below) all take job family
+  # 0, so a singleton ending in one test could remove the session folder of one starting in
+  # another (/tmp/ompi.<host>.<uid>/jf.0/1/0, "mkdir ... File exists" and MPI_Init fails)
+  string(MD5 _hash "${CMAKE_BINARY_DIR}/${test}")
+  string(SUBSTRING "${_hash}" 0 12 _hash)
+  set(_tmp "/tmp/meltdem-test-${_hash}")
+  file(MAKE_DIRECTORY "${_tmp}")
+  set_property(TEST ${test} APPEND PROPERTY ENVIRONMENT "TMPDIR=${_tmp}")
   set_property(TEST ${test} APPEND PROPERTY ENVIRONMENT
     "MELTDEM_REPORT_DIR=${MELTDEM_REPORT_DIR}"
     "MELTDEM_BIN=${CMAKE_BINARY_DIR}/bin"
