@@ -100,13 +100,8 @@ int main(int argc, char **argv)
     return 1;
   } catch (LAMMPSException &) {
     // error->all: every rank is here and rank 0 printed the message, so the job ends as stock
-    // lmp's does, without an abort that could kill rank 0 before its output is forwarded
-    KokkosLMP::finalize();
-    Python::finalize();
-    fflush(stdout);
-    MPI_Barrier(lammps_comm);
-    MPI_Finalize();
-    return 1;
+    // lmp's does (below), without an abort that could kill rank 0 before its output is forwarded
+    status = 1;
   } catch (fmt::format_error &fe) {
     fprintf(stderr, "fmt::format_error: %s\n", fe.what());
     KokkosLMP::finalize();
