@@ -296,11 +296,11 @@ void FixPowderDt::update_dt()
                  2.0 * vmax, worst, estar, rhomax, maxoverlap);
   }
   // A collision that started at speed U lasts t_c(U) even though the speeds drop while
-  // it lasts, and up to 1.8 t_c damped (e = 0.05): hold the largest U for two contact
-  // times, so dt does not grow mid-contact.
+  // it lasts, up to 1.8 t_c damped (e = 0.05), and 2^0.2 longer against a wall: hold the
+  // largest U for three contact times, so dt does not grow mid-contact.
   const double now = update->atime + (update->ntimestep - update->atimestep) * update->dt;
   const double Unow = mc::approach_speed_bound(vmax, vfloor);
-  if (Unow >= uhold || now - thold > 2.0 * mc::shortest_contact_time(rmin, rhomin, estar, uhold)) {
+  if (Unow >= uhold || now - thold > 3.0 * mc::shortest_contact_time(rmin, rhomin, estar, uhold)) {
     uhold = Unow;
     thold = now;
   }
