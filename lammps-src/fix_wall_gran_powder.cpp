@@ -101,8 +101,7 @@ double WallGranPowderCoeffs::damping_correction(double kn_factor, double alpha_c
   if (delta <= 0.0 && delta + dt * separation_rate <= 0.0) return 0.0;
   const double hertz_k = kn_factor * std::sqrt(reff);
   const double h = speed_factor > 0.0 ? contact_step(speed_factor, hertz_k, meff) : 0.0;
-  return meltdem::coupling::stepped_damping_correction(stepped.alpha(h), alpha_continuous, hertz_k, meff, delta,
-                                                       separation_rate, dt);
+  return stepped.correction(h, alpha_continuous, hertz_k, meff, delta, separation_rate, dt);
 }
 
 /* ---------------------------------------------------------------------- */

@@ -240,7 +240,7 @@ void PairGranularPowder::compute(int eflag, int vflag)
 void PairGranularPowder::add_stepped_damping(int /*eflag*/, int /*vflag*/)
 {
   // Replace the stock normal damping of 'damping tsuji' pairs by the stepped form of
-  // meltdem/coupling/stepped_restitution.h, with alpha for this contact's step.
+  // meltdem/coupling/stepped_restitution.h, with alpha for this contact's step and its onset ratio.
   double **x = atom->x, **v = atom->v, **f = atom->f;
   const double *radius = atom->radius, *rmass = atom->rmass;
   const int *type = atom->type, *mask = atom->mask;
@@ -296,8 +296,8 @@ void PairGranularPowder::add_stepped_damping(int /*eflag*/, int /*vflag*/)
       const double hertz_k = kn * std::sqrt(reff);
 
       const double h = speed > 0.0 ? contact_step(speed_factor, hertz_k, meff) : 0.0;
-      const double alpha = alpha_tables[slot(itype, jtype)].alpha(h);
-      const double fn = mc::stepped_damping_correction(alpha, alpha_continuous, hertz_k, meff, delta, vnnr, step);
+      const double fn =
+          alpha_tables[slot(itype, jtype)].correction(h, alpha_continuous, hertz_k, meff, delta, vnnr, step);
 
       const double fx = nx * fn, fy = ny * fn, fz = nz * fn;
       f[i][0] += fx;

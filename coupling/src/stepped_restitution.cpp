@@ -16,7 +16,7 @@ double damping_integral(double x)
   return x > 0.0 ? 0.8 * x * std::sqrt(std::sqrt(x)) : 0.0;
 }
 
-constexpr int phases = 16;
+constexpr int mean_phases = 16;
 
 }  // namespace
 
@@ -43,7 +43,19 @@ double stepped_damping_correction(double alpha, double alpha_stock, double hertz
   return fn;
 }
 
-double restitution_at_step(double alpha, double h, double phase)
+double onset_phase(double delta, double delta_prev)
+{
+  return -delta_prev / (delta - delta_prev);
+}
+
+double stepped_onset_force(double onset_ratio, double meff, double delta, double separation_rate, double dt)
+{
+  if (!(delta > 0.0 && delta + dt * separation_rate <= 0.0)) return 0.0;
+  // the force's impulse dt reaches the velocity in two half kicks, as every other force's
+  return -meff * (1.0 - onset_ratio) * separation_rate / dt;
+}
+
+double restitution_at_step(double alpha, double h, double phase, double onset_ratio)
 {
   // the pair style's loop in dimensionless form (m* = K = v0 = 1): kick, drift, force, kick
   double x = -phase * h, v = 1.0, a = 0.0;
@@ -55,7 +67,8 @@ double restitution_at_step(double alpha, double h, double phase)
     v += 0.5 * h * a;
     x += h * v;
     const double x_prev = x - h * v;
-    a = (x > 0.0 ? -x * std::sqrt(x) : 0.0) - stepped_damping_force(alpha, 1.0, 1.0, x, x_prev, h);
+    a = (x > 0.0 ? -x * std::sqrt(x) : 0.0) - stepped_damping_force(alpha, 1.0, 1.0, x, x_prev, h) -
+        stepped_onset_force(onset_ratio, 1.0, x, -v, h);
     v += 0.5 * h * a;
     if (x > 0.0)
       touched = true;
@@ -68,8 +81,8 @@ double restitution_at_step(double alpha, double h, double phase)
 double mean_restitution_at_step(double alpha, double h)
 {
   double sum = 0.0;
-  for (int k = 0; k < phases; ++k) sum += restitution_at_step(alpha, h, (k + 0.5) / phases);
-  return sum / phases;
+  for (int k = 0; k < mean_phases; ++k) sum += restitution_at_step(alpha, h, (k + 0.5) / mean_phases);
+  return sum / mean_phases;
 }
 
 double alpha_for_restitution_at_step(double e, double h)
@@ -96,6 +109,32 @@ double alpha_for_restitution_at_step(double e, double h)
   return 0.5 * (lo + hi);
 }
 
+double onset_ratio_for_restitution(double e, double alpha, double h, double phase)
+{
+  // the rebound grows with the approach speed kept, nearly in proportion: secant steps from
+  // r = 1 and e / e(1), bisection in [0.5, 1.5] if they leave it
+  auto miss = [&](double r) { return restitution_at_step(alpha, h, phase, r) - e; };
+  double r0 = 1.0, f0 = miss(r0);
+  double r1 = e / (f0 + e), f1 = miss(r1);
+  for (int it = 0; it < 30 && std::fabs(f1) > 1e-11 * e; ++it) {
+    if (f1 == f0 || !(r1 > 0.5 && r1 < 1.5)) break;
+    const double r2 = r1 - f1 * (r1 - r0) / (f1 - f0);
+    r0 = r1;
+    f0 = f1;
+    r1 = r2;
+    f1 = miss(r1);
+  }
+  if (r1 > 0.5 && r1 < 1.5 && std::fabs(f1) <= 1e-9 * e) return r1;
+  double lo = 0.5, hi = 1.5;
+  if (!(miss(lo) < 0.0)) return lo;
+  if (!(miss(hi) > 0.0)) return hi;
+  for (int it = 0; it < 60 && hi - lo > 1e-12; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    (miss(mid) < 0.0 ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
 SteppedAlphaTable::SteppedAlphaTable(double e, double alpha_continuous) : e_(e)
 {
   if (alpha_continuous >= 0.0) {
@@ -117,12 +156,79 @@ double SteppedAlphaTable::node(int k) const
   return alpha_[k];
 }
 
+const double *SteppedAlphaTable::ratios(int k, int j) const
+{
+  std::vector<double> &r = ratio_[k * ratio_nodes + j];
+  if (r.empty()) {
+    const double h_contact = 1.0 / (1.0 + ratio_spacing * j), a = alpha(max_contact_step * k / (ratio_points - 1));
+    r.resize(phases + 1);
+    // (phase 1 is not phase 0: the onset force then acts a step earlier, at a vanishing overlap)
+    for (int p = 0; p <= phases; ++p)
+      r[p] = onset_ratio_for_restitution(e_, a, h_contact, p < phases ? double(p) / phases : 1.0 - 1e-9);
+  }
+  return r.data();
+}
+
 double SteppedAlphaTable::alpha(double h) const
 {
   const double s = std::clamp(h / max_contact_step, 0.0, 1.0) * (points - 1);
   const int k = std::min((int)s, points - 2);
   const double w = s - k;
   return (1.0 - w) * node(k) + w * node(k + 1);
+}
+
+double SteppedAlphaTable::node_ratio(int k, double h_contact, double phase) const
+{
+  const double s = (std::max(1.0, 1.0 / h_contact) - 1.0) / ratio_spacing;
+  if (s >= ratio_nodes - 1) {
+    // finer steps: a phase scatter below 0.05 %; e over the phase-mean e of the node's alpha
+    const double h_fine = 1.0 / (1.0 + ratio_spacing * (ratio_nodes - 1));
+    if (!fine_known_[k]) {
+      const double a = alpha(max_contact_step * k / (ratio_points - 1));
+      for (int j = 0; j < fine_points; ++j)
+        fine_mean_[k][j] =
+            j == 0 ? restitution_for_alpha(a) : mean_restitution_at_step(a, h_fine * j / (fine_points - 1));
+      fine_known_[k] = true;
+    }
+    // the ratio also scales the contact's step (h ~ v^(1/5)): three fixed-point passes
+    double ratio = 1.0;
+    for (int pass = 0; pass < 3; ++pass) {
+      const double t = std::min(h_contact * std::pow(ratio, 0.2) / h_fine, 1.0) * (fine_points - 1);
+      const int j = std::min((int)t, fine_points - 2);
+      const double v = t - j;
+      ratio = e_ / ((1.0 - v) * fine_mean_[k][j] + v * fine_mean_[k][j + 1]);
+    }
+    return ratio;
+  }
+  const int j = (int)s;
+  const double w = s - j;
+  const double q = std::clamp(phase, 0.0, 1.0) * phases;
+  const int p = std::min((int)q, phases - 1);
+  const double u = q - p;
+  const double *lo = ratios(k, j), *hi = ratios(k, j + 1);
+  return (1.0 - w) * ((1.0 - u) * lo[p] + u * lo[p + 1]) + w * ((1.0 - u) * hi[p] + u * hi[p + 1]);
+}
+
+double SteppedAlphaTable::onset_ratio(double h, double h_contact, double phase) const
+{
+  if (e_ <= 0.0 || !(h > 0.0) || !(h_contact > 0.0)) return 1.0;
+  const double s = std::clamp(h / max_contact_step, 0.0, 1.0) * (ratio_points - 1);
+  const int k = std::min((int)s, ratio_points - 2);
+  const double w = s - k;
+  return (1.0 - w) * node_ratio(k, h_contact, phase) + (w > 0.0 ? w * node_ratio(k + 1, h_contact, phase) : 0.0);
+}
+
+double SteppedAlphaTable::correction(double h, double alpha_stock, double hertz_k, double meff, double delta,
+                                     double separation_rate, double dt) const
+{
+  double fn = stepped_damping_correction(alpha(h), alpha_stock, hertz_k, meff, delta, separation_rate, dt);
+  const double delta_prev = delta + dt * separation_rate;
+  if (delta > 0.0 && delta_prev <= 0.0) {
+    const double h_contact = contact_step(dt, -separation_rate, hertz_k, meff);
+    fn += stepped_onset_force(onset_ratio(h, h_contact, onset_phase(delta, delta_prev)), meff, delta, separation_rate,
+                              dt);
+  }
+  return fn;
 }
 
 }  // namespace meltdem::coupling

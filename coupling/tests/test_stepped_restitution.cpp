@@ -101,3 +101,60 @@ TEST(SteppedRestitution, RejectsBadInput)
   EXPECT_THROW(alpha_for_restitution_at_step(0.5, -0.1), std::invalid_argument);
   EXPECT_THROW(alpha_for_restitution_at_step(0.5, 2.0), std::invalid_argument);
 }
+
+TEST(SteppedRestitution, OnsetRatioRemovesThePhaseScatter)
+{
+  // with the table's onset ratio every phase returns e, at the coarsest steps users run and
+  // between the table's nodes of h and phase
+  for (double e : {0.1, 0.3, 0.5, 0.7, 0.95}) {
+    const SteppedAlphaTable table(e);
+    for (double S : {4.0, 5.0, 7.0, 10.0, 20.0, 60.0}) {
+      const double h = contact_time / S, a = table.alpha(h);
+      double worst = 0.0, worst_without = 0.0;
+      for (int k = 0; k < 200; ++k) {
+        const double phase = (k + 0.37) / 200;
+        worst = std::max(worst, std::fabs(restitution_at_step(a, h, phase, table.onset_ratio(h, h, phase)) / e - 1));
+        worst_without = std::max(worst_without, std::fabs(restitution_at_step(a, h, phase) / e - 1));
+      }
+      const std::string at = " at S=" + std::to_string(S) + " (e " + std::to_string(e) + ")";
+      expect_absolute("worst phase |e/e0 - 1| with the onset ratio" + at, worst, 0.0, 0.001);
+      if (S <= 5.0) EXPECT_GT(worst_without, 0.005) << "the scatter the ratio removes" << at;
+    }
+  }
+}
+
+TEST(SteppedRestitution, OnsetRatioHoldsAtOtherImpactSpeeds)
+{
+  // a contact slower or faster than the calibration speed runs at its own step with the
+  // alpha of the calibration step; the onset ratio returns e at every phase
+  for (double e : {0.1, 0.3, 0.5, 0.95}) {
+    const SteppedAlphaTable table(e);
+    for (double S : {5.0, 10.0, 20.0})
+      for (double speed : {1e-6, 0.01, 0.1, 0.2, 0.5, 1.0, 1.5}) {
+        const double h = contact_time / S, a = table.alpha(h);
+        const double h_contact = h * std::pow(speed, 0.2);
+        double worst = 0.0;
+        for (int k = 0; k < 50; ++k) {
+          const double phase = (k + 0.37) / 50;
+          worst = std::max(
+              worst,
+              std::fabs(restitution_at_step(a, h_contact, phase, table.onset_ratio(h, h_contact, phase)) / e - 1));
+        }
+        expect_absolute("worst phase |e/e0 - 1| at " + std::to_string(speed) +
+                            " of the calibration speed, S=" + std::to_string(S) + " (e " + std::to_string(e) + ")",
+                        worst, 0.0, 0.001);
+      }
+  }
+  // without a calibration speed (h = 0: the continuous alpha) no onset force
+  EXPECT_EQ(SteppedAlphaTable(0.3).onset_ratio(0.0, 0.3, 0.5), 1.0);
+}
+
+TEST(SteppedRestitution, OnsetForceActsAtTheFirstOverlappingStepOnly)
+{
+  const double m = 2e-10, dt = 1e-9, rate = -2.0;
+  // approach speed 2 scaled by 0.99: an impulse of m * 0.02 over the step
+  expect_relative("onset impulse", stepped_onset_force(0.99, m, 0.5 * dt * 2.0, rate, dt) * dt, m * 0.02, 1e-12);
+  EXPECT_EQ(stepped_onset_force(0.99, m, 3.0 * dt * 2.0, rate, dt), 0.0);  // overlapping a step ago too
+  EXPECT_EQ(stepped_onset_force(0.99, m, -1e-12, rate, dt), 0.0);          // not yet touching
+  expect_relative("phase of a contact starting three quarters into the step", onset_phase(0.25, -0.75), 0.75, 1e-15);
+}
