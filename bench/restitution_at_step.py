@@ -93,7 +93,9 @@ with open(os.path.join(HERE, "restitution_at_step.md"), "w") as f:
             "phase mean [smallest, largest]. Stock granular maps e to alpha by Tsuji's polynomial, so its "
             "errors include that map's bias (e = 0.3 -> 0.44 at fine steps); 'continuous alpha, stock force' is "
             "granular/powder before the stepped damping (its exact alpha of the continuous contact, via "
-            "damping tsuji/alpha), with the stock fix powder/dt speed hold of one contact time replaced by two.\n\n"
+            "damping tsuji/alpha), with the stock fix powder/dt speed hold of one contact time replaced by three. "
+            "granular/powder includes the onset force (the approach speed scaled at the step a contact starts "
+            "by the ratio for its phase and step).\n\n"
             "| e | S | stock granular | continuous alpha, stock force | granular/powder |\n|---|---|---|---|---|\n")
     for r in rows:
         cells = [f"{pct(m)} [{pct(lo)}, {pct(hi)}]" for m, lo, hi in (r[k] for k in STYLES)]
@@ -105,7 +107,7 @@ with open(os.path.join(HERE, "restitution_at_step.md"), "w") as f:
     f.write("## Contacts slower than the calibration speed\n\n"
             "dt fixed at t_c(2 m/s)/10, pair_style granular/powder impact_speed 2 (as fix powder/dt calibrates "
             "at its approach speed U); contacts at lower speeds last longer (S_eff = 10 (2/v)^(1/5) steps) "
-            "and get the alpha of the 2 m/s step.\n\n"
+            "and get the alpha of the 2 m/s step; the onset force uses each contact's own step.\n\n"
             "| e | impact speed (m/s) | steps per contact | error of e (%) mean [min, max] |\n|---|---|---|---|\n")
     for r in speed_rows:
         f.write(f"| {r['e']} | {r['v']} | {r['S']:.1f} | {pct(r['mean'])} [{pct(r['lo'])}, {pct(r['hi'])}] |\n")
