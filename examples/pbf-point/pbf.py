@@ -475,19 +475,26 @@ def grains(case, cfg):
 
 def isotherm_extent(T, molten, axis, h):
     """The longest extent along AXIS of molten metal over the lattice's lines, each end where T
-    crosses T_MELT between the last molten cell's centre and the next cell's (linear), or at the
-    last cell's face when the line ends molten or its neighbour is not colder."""
+    crosses T_MELT between the last molten cell's centre and the next cell's (linear), at the next
+    cell's centre when that cell is not colder (hot gas or mushy metal beside the pool: the limit of
+    the crossing as that cell's T rises to T_MELT, so that the reading never jumps with a hundredth
+    of a kelvin), or at the domain's face when the line ends molten."""
     Tl, ml = np.moveaxis(T, axis, -1), np.moveaxis(molten, axis, -1)
     best = 0.0
     for line in np.argwhere(ml.any(axis=-1)):
         t, cells = Tl[tuple(line)], np.nonzero(ml[tuple(line)])[0]
         lo, hi = cells.min(), cells.max()
-        x0 = (lo - 0.5 + (T_MELT - t[lo - 1]) / (t[lo] - t[lo - 1])) * h if lo > 0 and t[lo - 1] < T_MELT \
-            else lo * h
-        x1 = (hi + 0.5 + (t[hi] - T_MELT) / (t[hi] - t[hi + 1])) * h if hi < len(t) - 1 and t[hi + 1] < T_MELT \
-            else (hi + 1) * h
+        x0 = lo * h if lo == 0 else (lo - 0.5 + crossing(t[lo], t[lo - 1])) * h
+        x1 = (hi + 1) * h if hi == len(t) - 1 else (hi + 0.5 + 1.0 - crossing(t[hi], t[hi + 1])) * h
         best = max(best, x1 - x0)
     return best
+
+
+def crossing(t_in, t_out):
+    """Where between a molten cell's centre (T t_in >= T_MELT) and its neighbour's (t_out) T
+    crosses T_MELT, as the fraction of the way from the neighbour: 0 at the neighbour's centre
+    when it is not colder."""
+    return 0.0 if t_out >= T_MELT else (T_MELT - t_out) / (t_in - t_out)
 
 
 def melt_pool(case, cfg):
