@@ -12,9 +12,10 @@
 // contact then sum exactly to D(end) - D(start) = 0 as in the continuous contact, and
 // e no longer depends on the phase to within 0.25 % at 10 steps per contact. What remains
 // is a smooth bias in the dimensionless step h = dt v0^(1/5) (K/m*)^(2/5), removed by
-// choosing alpha for that h (alpha_for_restitution_at_step), and a scatter with the phase
-// where in a step the contact starts (+-1.7 % at 5 steps per contact), removed by scaling
-// the approach speed at the step the contact starts by a ratio for that phase
+// choosing alpha for that h (alpha_for_restitution_at_step), a scatter with the phase where
+// in a step the contact starts (+-1.7 % at 5 steps per contact) and a bias for contacts
+// slower than the h is calibrated at, both removed by scaling the approach speed at the
+// step the contact starts by a ratio for its phase and its own step
 // (onset_ratio_for_restitution): the start is seen in that step alone, so no contact
 // history is kept and a restart or a change of rank cannot lose it.
 
