@@ -511,7 +511,10 @@ void FixPowderMelt::post_force(int /*vflag*/)
   const double dt = update->dt;
 
   mc::FluidState fluid;
-  mc::ExactSum held_heat;  // the held heat steps' heat, booked after the loop (kept in registers)
+  // the held heat steps' heats, booked after the loop (the exact sum's dependency chain kept
+  // out of the per-particle work)
+  if (step_heats.size() < std::size_t(nlocal)) step_heats.resize(std::size_t(nlocal));
+  double *heats = step_heats.data();
   int nheated = 0;
   for (int i = 0; i < nlocal; i++) {
     // (held coefficients belong to a solid particle of the group: tested first)
@@ -537,16 +540,17 @@ void FixPowderMelt::post_force(int /*vflag*/)
       // held coefficients: drag against the parcel's velocity now, buoyancy with g now, and the
       // heat step with the same slip (the step's mid-point velocity, as the drag)
       double *c = coef[i];
-      const bool heats = c[C_SHARE] != 0.0;
-      const double y = c[C_BETA1] != 0.0 || heats ? mc::held_variable(s2) : c[C_Y0];
+      const bool heats_now = c[C_SHARE] != 0.0;
+      const double y = c[C_BETA1] != 0.0 || heats_now ? mc::held_variable(s2) : c[C_Y0];
       const double beta = held_drag_at(c, y);
+      const bool parcel_moves = c[C_DTMF] != 0.0;  // (an unbounded ambient parcel does not)
       for (int k = 0; k < 3; k++) {
         const double drag = beta * (c[C_PUX + k] - v[i][k]);
-        c[C_PUX + k] -= drag * c[C_DTMF];
+        if (parcel_moves) c[C_PUX + k] -= drag * c[C_DTMF];
         f[i][k] += drag + c[C_VB] * g[k];
         c[C_IDX + k] += drag * dt;
       }
-      const bool heated = !heats || held_heat_step(i, rmass[i], y, held_heat);
+      const bool heated = !heats_now || held_heat_step(i, rmass[i], y, heats);
       c[C_HEATED] = heated ? 1.0 : 0.0;
       nheated += heated;
       continue;
@@ -587,6 +591,8 @@ void FixPowderMelt::post_force(int /*vflag*/)
   }
   if (!in_setup) {
     interval_start = 0;
+    mc::ExactSum held_heat;
+    for (const double *q = step_heats.data(); q != heats; ++q) held_heat.add(*q);
     ledger[5].add(held_heat.hi());
     ledger[5].add(held_heat.lo());
     heated_nlocal = nheated == nlocal ? nlocal : -1;
@@ -897,6 +903,12 @@ double FixPowderMelt::memory_usage()
 mc::ExchangeRecord FixPowderMelt::record(int i) const
 {
   mc::ExchangeRecord r;
+  fill_record(i, r);
+  return r;
+}
+
+void FixPowderMelt::fill_record(int i, mc::ExchangeRecord &r) const
+{
   const bool molten = melt[i][MOLTEN] != 0.0;
   r.id = atom->tag[i];
   r.x = Eigen::Vector3d(atom->x[i][0], atom->x[i][1], atom->x[i][2]);
@@ -917,8 +929,10 @@ mc::ExchangeRecord FixPowderMelt::record(int i) const
   if (held_flag && held[i][HELD_SET] != 0.0) {
     r.located_by = int(held[i][HELD_BY]);
     r.light = held[i][HELD_STATE + mc::kFluidStateHeatSource];
+  } else {
+    r.located_by = -1;
+    r.light = 0.0;
   }
-  return r;
 }
 
 void FixPowderMelt::interval_records(std::vector<mc::ExchangeRecord> &out) const
@@ -941,7 +955,7 @@ void FixPowderMelt::records(std::vector<mc::ExchangeRecord> &out, bool with_fini
     // once: the records already there are overwritten, not made afresh)
     out.resize(order.size());
     for (int i = 0; i < atom->nlocal; i++)
-      if (tag_rank[std::size_t(i)] >= 0) out[std::size_t(tag_rank[std::size_t(i)])] = record(i);
+      if (tag_rank[std::size_t(i)] >= 0) fill_record(i, out[std::size_t(tag_rank[std::size_t(i)])]);
     return;
   }
   out.clear();

@@ -142,6 +142,8 @@ class FixPowderMelt : public Fix {
   void store_contact_memory(int i, const meltdem::coupling::SolidContactMemory &m);
   std::vector<meltdem::coupling::ExchangeRecord> finished;  // deleted this interval
   meltdem::coupling::ExchangeRecord record(int i) const;
+  // the same written into r (every field: a reused record keeps nothing of its old value)
+  void fill_record(int i, meltdem::coupling::ExchangeRecord &r) const;
   void records(std::vector<meltdem::coupling::ExchangeRecord> &out, bool with_finished) const;
   // the local slot of each tag, -1 where it is not a local atom of this rank
   std::vector<int> local_slots(const std::vector<tagint> &tags) const;
@@ -222,8 +224,9 @@ class FixPowderMelt : public Fix {
     NCOEF
   };
   double **coef;
-  int heated_nlocal;  // nlocal where post_force took every particle's held step this step, else -1
-  double coef_tol;    // keyword coefficient_tolerance (0: every step; default 0.01)
+  std::vector<double> step_heats;  // this step's held heat steps' heats, summed after the loop
+  int heated_nlocal;               // nlocal where post_force took every particle's held step this step, else -1
+  double coef_tol;                 // keyword coefficient_tolerance (0: every step; default 0.01)
   // evaluate particle i's coefficients for the fluid it sees (after parcel_state) and step dt;
   // returns its squared slip, or -1 where it is evaluated every step
   double hold_coefficients(int i, const meltdem::coupling::FluidState &fluid, double dt);
@@ -274,9 +277,9 @@ class FixPowderMelt : public Fix {
     return std::min(c[C_BETA0] + c[C_BETA1] * (y - c[C_Y0]), c[C_CAP]);
   }
   // particle i's (mass m) held heat step at y = s^(1/2) (the sensible heat step of
-  // heat_melt_step(_two_body) while it stays below melting), its heat added to sum; false where
-  // the step would reach melting (the full step takes it then)
-  inline bool held_heat_step(int i, double m, double y, meltdem::coupling::ExactSum &sum)
+  // heat_melt_step(_two_body) while it stays below melting), its heat appended at *heats; false
+  // where the step would reach melting (the full step takes it then)
+  inline bool held_heat_step(int i, double m, double y, double *&heats)
   {
     double *c = coef[i];
     const double h = melt[i][HSPEC];
@@ -288,7 +291,7 @@ class FixPowderMelt : public Fix {
     if (!(h < hm && h_new < hm)) return false;
     const double heat = m * (h_new - h);
     if (c[C_CF] > 0.0) c[C_PT] -= heat / c[C_CF];
-    sum.add(heat);
+    *heats++ = heat;
     melt[i][HSPEC] = h_new;
     c[C_IHEAT] += heat;
     melt[i][TEMP] = output[i][0] = T_new;  // below melting
