@@ -18,6 +18,25 @@ double damping_integral(double x)
 
 constexpr int mean_phases = 16;
 
+// where coordinate s (in node spacings, clamped to [0, nodes - 1]) lies on a grid of nodes: the
+// lower node of its interval and its weight on the upper one
+struct GridPosition {
+  int node;
+  double weight;
+};
+
+GridPosition grid_position(double s, int nodes)
+{
+  const int k = std::min((int)s, nodes - 2);
+  return {k, s - k};
+}
+
+// the contact starts this step: it overlaps now and did not at the step's start
+bool contact_starts(double delta, double delta_prev)
+{
+  return delta > 0.0 && delta_prev <= 0.0;
+}
+
 }  // namespace
 
 double contact_step(double dt, double impact_speed, double hertz_k, double meff)
@@ -50,7 +69,7 @@ double onset_phase(double delta, double delta_prev)
 
 double stepped_onset_force(double onset_ratio, double meff, double delta, double separation_rate, double dt)
 {
-  if (!(delta > 0.0 && delta + dt * separation_rate <= 0.0)) return 0.0;
+  if (!contact_starts(delta, delta + dt * separation_rate)) return 0.0;
   // the force's impulse dt reaches the velocity in two half kicks, as every other force's
   return -meff * (1.0 - onset_ratio) * separation_rate / dt;
 }
@@ -160,7 +179,7 @@ const double *SteppedAlphaTable::ratios(int k, int j) const
 {
   std::vector<double> &r = ratio_[k * ratio_nodes + j];
   if (r.empty()) {
-    const double h_contact = 1.0 / (1.0 + ratio_spacing * j), a = alpha(max_contact_step * k / (ratio_points - 1));
+    const double h_contact = 1.0 / (1.0 + ratio_spacing * j), a = ratio_node_alpha(k);
     r.resize(phases + 1);
     // (phase 1 is not phase 0: the onset force then acts a step earlier, at a vanishing overlap)
     for (int p = 0; p <= phases; ++p)
@@ -171,10 +190,13 @@ const double *SteppedAlphaTable::ratios(int k, int j) const
 
 double SteppedAlphaTable::alpha(double h) const
 {
-  const double s = std::clamp(h / max_contact_step, 0.0, 1.0) * (points - 1);
-  const int k = std::min((int)s, points - 2);
-  const double w = s - k;
-  return (1.0 - w) * node(k) + w * node(k + 1);
+  const GridPosition g = grid_position(std::clamp(h / max_contact_step, 0.0, 1.0) * (points - 1), points);
+  return (1.0 - g.weight) * node(g.node) + g.weight * node(g.node + 1);
+}
+
+double SteppedAlphaTable::ratio_node_alpha(int k) const
+{
+  return alpha(max_contact_step * k / (ratio_points - 1));
 }
 
 double SteppedAlphaTable::node_ratio(int k, double h_contact, double phase) const
@@ -184,7 +206,7 @@ double SteppedAlphaTable::node_ratio(int k, double h_contact, double phase) cons
     // finer steps: a phase scatter below 0.05 %; e over the phase-mean e of the node's alpha
     const double h_fine = 1.0 / (1.0 + ratio_spacing * (ratio_nodes - 1));
     if (!fine_known_[k]) {
-      const double a = alpha(max_contact_step * k / (ratio_points - 1));
+      const double a = ratio_node_alpha(k);
       for (int j = 0; j < fine_points; ++j)
         fine_mean_[k][j] =
             j == 0 ? restitution_for_alpha(a) : mean_restitution_at_step(a, h_fine * j / (fine_points - 1));
@@ -193,29 +215,26 @@ double SteppedAlphaTable::node_ratio(int k, double h_contact, double phase) cons
     // the ratio also scales the contact's step (h ~ v^(1/5)): three fixed-point passes
     double ratio = 1.0;
     for (int pass = 0; pass < 3; ++pass) {
-      const double t = std::min(h_contact * std::pow(ratio, 0.2) / h_fine, 1.0) * (fine_points - 1);
-      const int j = std::min((int)t, fine_points - 2);
-      const double v = t - j;
-      ratio = e_ / ((1.0 - v) * fine_mean_[k][j] + v * fine_mean_[k][j + 1]);
+      const GridPosition g =
+          grid_position(std::min(h_contact * std::pow(ratio, 0.2) / h_fine, 1.0) * (fine_points - 1), fine_points);
+      ratio = e_ / ((1.0 - g.weight) * fine_mean_[k][g.node] + g.weight * fine_mean_[k][g.node + 1]);
     }
     return ratio;
   }
-  const int j = (int)s;
-  const double w = s - j;
-  const double q = std::clamp(phase, 0.0, 1.0) * phases;
-  const int p = std::min((int)q, phases - 1);
-  const double u = q - p;
-  const double *lo = ratios(k, j), *hi = ratios(k, j + 1);
-  return (1.0 - w) * ((1.0 - u) * lo[p] + u * lo[p + 1]) + w * ((1.0 - u) * hi[p] + u * hi[p + 1]);
+  const GridPosition a = grid_position(s, ratio_nodes);                                    // of 1/h_a
+  const GridPosition b = grid_position(std::clamp(phase, 0.0, 1.0) * phases, phases + 1);  // of the phase
+  const double *lo = ratios(k, a.node), *hi = ratios(k, a.node + 1);
+  const double u = b.weight;
+  const int p = b.node;
+  return (1.0 - a.weight) * ((1.0 - u) * lo[p] + u * lo[p + 1]) + a.weight * ((1.0 - u) * hi[p] + u * hi[p + 1]);
 }
 
 double SteppedAlphaTable::onset_ratio(double h, double h_contact, double phase) const
 {
   if (e_ <= 0.0 || !(h > 0.0) || !(h_contact > 0.0)) return 1.0;
-  const double s = std::clamp(h / max_contact_step, 0.0, 1.0) * (ratio_points - 1);
-  const int k = std::min((int)s, ratio_points - 2);
-  const double w = s - k;
-  return (1.0 - w) * node_ratio(k, h_contact, phase) + (w > 0.0 ? w * node_ratio(k + 1, h_contact, phase) : 0.0);
+  const GridPosition g = grid_position(std::clamp(h / max_contact_step, 0.0, 1.0) * (ratio_points - 1), ratio_points);
+  return (1.0 - g.weight) * node_ratio(g.node, h_contact, phase) +
+         (g.weight > 0.0 ? g.weight * node_ratio(g.node + 1, h_contact, phase) : 0.0);
 }
 
 double SteppedAlphaTable::correction(double h, double alpha_stock, double hertz_k, double meff, double delta,
@@ -223,7 +242,7 @@ double SteppedAlphaTable::correction(double h, double alpha_stock, double hertz_
 {
   double fn = stepped_damping_correction(alpha(h), alpha_stock, hertz_k, meff, delta, separation_rate, dt);
   const double delta_prev = delta + dt * separation_rate;
-  if (delta > 0.0 && delta_prev <= 0.0) {
+  if (contact_starts(delta, delta_prev)) {
     const double h_contact = contact_step(dt, -separation_rate, hertz_k, meff);
     fn += stepped_onset_force(onset_ratio(h, h_contact, onset_phase(delta, delta_prev)), meff, delta, separation_rate,
                               dt);

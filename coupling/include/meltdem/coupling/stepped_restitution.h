@@ -132,6 +132,8 @@ class SteppedAlphaTable {
   mutable double fine_mean_[ratio_points][fine_points] = {};
   mutable bool fine_known_[ratio_points] = {};
   double node(int k) const;
+  // alpha at node k of the ratio table's grid of h
+  double ratio_node_alpha(int k) const;
   const double *ratios(int k, int j) const;
   double node_ratio(int k, double h_contact, double phase) const;
 };
