@@ -893,7 +893,7 @@ double FixPowderMelt::memory_usage()
 {
   return (double)atom->nmax * (NCOL + NOUT + NHELD + NCOEF) * sizeof(double) +
          (double)tag_order.capacity() * sizeof(int) + (double)tag_rank.capacity() * sizeof(int) +
-         (double)order_tags.capacity() * sizeof(tagint);
+         (double)order_tags.capacity() * sizeof(tagint) + (double)step_heats.capacity() * sizeof(double);
 }
 
 /* ----------------------------------------------------------------------
