@@ -4,6 +4,7 @@ build plate (and over a rough previous layer); the scene interface of examples/.
 
     scene.py build CASE [--ci | --full] [--spreader blade|roller] [--speed V] [--gap G]
                         [--base plate|rough] [--gamma W] [--mu M] [--mur R] [--E E] [--seed S]
+                        [--layers N]
     scene.py run CASE [--np N]       meltdem-lmp -in in.powder-spread with the case's variables
     scene.py analyse CASE            layer packing, thickness profile, roughness, segregation,
                                      grains carried past the plate -> CASE/summary.json
@@ -16,6 +17,7 @@ defaults and the published values they are compared with.
 import json
 import math
 import os
+import shutil
 
 from meltdem.analysis.spread import layer_bed, spread_stats
 from meltdem.case.dem import run_actions, run_input, scene_parser, write_case
@@ -29,13 +31,14 @@ VARIANTS = {
     "full": {"Lz": "4e-4", "Lplate": "1.2e-3", "Lheap": "1e-3", "N": "3000", "every": "10000"},
 }
 OPTIONS = {"spreader": "spreader", "speed": "V", "gap": "gap", "base": "base", "gamma": "gamma", "mu": "mu",
-           "mur": "mur", "E": "E", "seed": "seed"}
+           "mur": "mur", "E": "E", "seed": "seed", "layers": "layers"}
 
 
 def build(case, variant, **opts):
     v = dict(VARIANTS[variant])
     v.update({name: str(opts[k]) for k, name in OPTIONS.items() if opts.get(k) is not None})
     write_case(case, "powder-spread", variant, os.path.join(HERE, "in.powder-spread"), v)
+    shutil.copy(os.path.join(HERE, "in.powder-spread-layer"), case)     # included once per layer > 1
 
 
 def run(case, np_=1):
@@ -97,6 +100,7 @@ def main(argv=None):
     ap.add_argument("--mur", type=float, help="rolling friction (default 0.1)")
     ap.add_argument("--E", type=float, help="Young's modulus [Pa] (default 1e9)")
     ap.add_argument("--seed", type=int)
+    ap.add_argument("--layers", type=int, help="layers spread, the plate lowered by the gap after each (default 1)")
     a = ap.parse_args(argv)
     run_actions(a, lambda case: build(case, a.variant or "full", **{k: getattr(a, k) for k in OPTIONS}), run, analyse)
 

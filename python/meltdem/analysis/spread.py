@@ -144,6 +144,32 @@ def layer_bed(case, lx, out):
     return len(idx)
 
 
+def layer_packing(case):
+    """{k: (bed packing, packing below the newest layer)} after each layer k of a run with layers > 1
+    (spread.dump is layer 1, spread_layerK.dump the others), in the plate's inner part: the grain
+    volume over plate area x k gaps (the cavity floor at -(k - 1) gap up to the spreader's lowest
+    point), and the volume below the previous layers' top (y < 0) over plate area x (k - 1) gaps
+    (nan for k = 1)"""
+    geo = run_geometry(case)
+    gap, lz = geo["gap"], geo["Lz"]
+    a, b = geo["xplate0"] + 2 * geo["dhi"], geo["xplate1"] - 2 * geo["dhi"]
+    area = (b - a) * lz
+    paths = {1: os.path.join(case, "spread.dump")}
+    for name in os.listdir(case):
+        m = re.fullmatch(r"spread_layer(\d+)\.dump", name)
+        if m:
+            paths[int(m.group(1))] = os.path.join(case, name)
+    out = {}
+    for k in sorted(paths):
+        d = dumps.columns(dumps.read_frames(paths[k])[-1])
+        vol = 4.0 / 3.0 * np.pi * d["radius"] ** 3
+        inner = (d["x"] > a) & (d["x"] < b) & (d["y"] < gap)
+        below = inner & (d["y"] < 0.0)
+        out[k] = (float(vol[inner].sum()) / (area * k * gap),
+                  float(vol[below].sum()) / (area * (k - 1) * gap) if k > 1 else float("nan"))
+    return out
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("case")

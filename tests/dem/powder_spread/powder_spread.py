@@ -8,7 +8,8 @@ Checks (definitions in python/meltdem/analysis/spread.py and the scene's README)
   * the heap's mean diameter against the uniform 15-45 um distribution's 30 um, within three
     standard errors (8.66 um / sqrt(N));
   * effective layer packing V / (A gap) against the LPBF bed range 0.38-0.60 (Mahmoodkhani et
-    al. 2019), XFAIL: a blade at 2 d90 leaves empty patches (Nan et al. 2018), see the README;
+    al. 2019), XFAIL: a blade at 2 d90 leaves empty patches (Nan et al. 2018), see the README
+    (a bed of several layers: dem.powder_spread.layers);
   * the layer exported for the melt scenes' --bed: every grain wholly inside the bed's box.
 """
 import math
@@ -42,7 +43,8 @@ ok &= check_absolute(TEST, "heap mean diameter [m] (uniform 15-45 um: 30 um, 3 s
 ok &= check_absolute(TEST, "effective layer packing V/(A gap) (LPBF beds 0.38-0.60, Mahmoodkhani 2019)",
                      s["packing_fraction"], 0.49, 0.11,
                      xfail="a blade at 2 d90 over a bare plate leaves empty patches (Nan et al. 2018): 0.10-0.25 "
-                           "over the cases and seeds of bench/powder_spread.md")
+                           "over the cases and seeds of bench/powder_spread.md; the bed under later layers packs "
+                           "in range (dem.powder_spread.layers, bench/powder_spread_layers.md)")
 out = max(float(max(-(b["x"] - b["radius"]).min(), (b["x"] + b["radius"]).max() - lx)),
           float(max(-(b["z"] - b["radius"]).min(), (b["z"] + b["radius"]).max() - lz)), 0.0)
 ok &= report(TEST, f"layer bed ({lx * 1e3:g} x {lz * 1e3:g} mm): grains, largest reach outside the box [m]",
