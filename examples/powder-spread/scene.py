@@ -19,7 +19,7 @@ import math
 import os
 import shutil
 
-from meltdem.analysis.spread import layer_bed, spread_stats
+from meltdem.analysis.spread import layer_bed, layer_packing, spread_stats
 from meltdem.case.dem import run_actions, run_input, scene_parser, write_case
 from meltdem.scene import Scene
 
@@ -46,7 +46,11 @@ def run(case, np_=1):
 
 
 def analyse(case):
-    s = spread_stats(case)
+    s = spread_stats(case)                      # the first layer
+    layers = layer_packing(case)
+    if len(layers) > 1:                         # --layers N: the bed after each layer
+        s["layers"] = [{"layer": k, "bed_packing": bed, "packing_below_newest_layer": None if k == 1 else below}
+                       for k, (bed, below) in sorted(layers.items())]
     with open(os.path.join(case, "summary.json"), "w") as f:
         json.dump(s, f, indent=1)
     print(f"powder-spread ({s['spreader']}, {s['speed_m_per_s'] * 1e3:.0f} mm/s, gap {s['gap_m'] * 1e6:.0f} um = "
@@ -56,6 +60,9 @@ def analyse(case):
           f"{s['mean_diameter_heap_m'] * 1e6:.1f} um, last/first third {s['segregation_last_over_first_third']:.3f}, "
           f"carried past the plate {s['grains_carried_past_plate']} grains "
           f"({s['mass_fraction_carried_past_plate']:.2f} of the mass)")
+    for row in s.get("layers", [])[1:]:
+        print(f"after layer {row['layer']}: bed packing {row['bed_packing']:.3f}, below the newest layer "
+              f"{row['packing_below_newest_layer']:.3f}")
     return s
 
 
