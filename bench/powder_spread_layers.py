@@ -18,8 +18,8 @@ Writes powder_spread_layers.md and .png next to this script; a WORK case that al
 last layer's dump is analysed again without running.
 """
 import argparse
+import concurrent.futures as cf
 import os
-import subprocess
 import sys
 import time
 
@@ -29,38 +29,23 @@ import numpy as np
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "python"))
-from meltdem.analysis.spread import layer_packing  # noqa: E402
-
 HERE = os.path.dirname(os.path.abspath(__file__))
-ROOT = os.path.dirname(HERE)
-SCENE = os.path.join(ROOT, "examples", "powder-spread", "scene.py")
+sys.path.insert(0, os.path.join(HERE, "..", "python"))
+from meltdem.analysis.spread import layer_packing  # noqa: E402
+from meltdem.scene import module  # noqa: E402
+
 BED_RANGE = (0.38, 0.60)     # powder-bed densities of laser PBF, review by Mahmoodkhani et al. 2019
 
 
-def run_cases(cases, layers):
-    """build and run the cases not yet done, two at a time"""
-    env = dict(os.environ)
-    env["PYTHONPATH"] = os.path.join(ROOT, "python") + os.pathsep + env.get("PYTHONPATH", "")
-    todo = [(seed, case) for seed, case in cases
-            if not os.path.exists(os.path.join(case, f"spread_layer{layers}.dump"))]
-    running = []
-    while todo or running:
-        while todo and len(running) < 2:
-            seed, case = todo.pop(0)
-            subprocess.run([sys.executable, SCENE, "build", case, "--ci", "--layers", str(layers), "--seed",
-                            str(seed)], check=True, env=env, stdout=subprocess.DEVNULL)
-            log = open(case + ".out", "w")
-            running.append((case, subprocess.Popen([sys.executable, SCENE, "run", case], env=env, stdout=log,
-                                                   stderr=subprocess.STDOUT), time.time()))
-        time.sleep(5)
-        for item in list(running):
-            case, p, t0 = item
-            if p.poll() is not None:
-                running.remove(item)
-                print(f"{case}: rc {p.returncode} after {time.time() - t0:.0f} s", flush=True)
-                if p.returncode != 0:
-                    raise SystemExit(f"{case} failed: see {case}.out and {case}/log.lammps")
+def one(case, layers, seed):
+    """the CI case spread over LAYERS layers with SEED (as bench/powder_spread.py runs its cases), unless
+    CASE already holds its last layer"""
+    if not os.path.exists(os.path.join(case, f"spread_layer{layers}.dump")):
+        t = time.time()
+        scene = module("powder-spread")
+        scene.build(case, "ci", layers=layers, seed=seed)
+        scene.run(case)
+        print(f"{case}: {time.time() - t:.0f} s", flush=True)
 
 
 def main():
@@ -73,7 +58,8 @@ def main():
     start = time.time()
     cases = [(s, os.path.join(a.work, f"seed{s}")) for s in a.seeds]
     os.makedirs(a.work, exist_ok=True)
-    run_cases(cases, a.layers)
+    with cf.ThreadPoolExecutor(2) as ex:         # two runs at once
+        list(ex.map(lambda sc: one(sc[1], a.layers, sc[0]), cases))
     res = {s: layer_packing(c) for s, c in cases}
     ks = sorted(set.intersection(*[set(r) for r in res.values()]))
 
