@@ -159,8 +159,13 @@ void Foam::meltdem::particleLedgerOutput::book
             mc::kContinuumSource,
             mc::make_amounts
             (
-                0, b.laserE - b.evapE,
-                Eigen::Vector3d(b.gravityImpulse.x(), b.gravityImpulse.y(), b.gravityImpulse.z())
+                -b.evaporatedMass, b.laserE - b.evapE - b.evaporatedEnthalpy,
+                Eigen::Vector3d
+                (
+                    b.gravityImpulse.x() - b.evaporatedMomentum.x(),
+                    b.gravityImpulse.y() - b.evaporatedMomentum.y(),
+                    b.gravityImpulse.z() - b.evaporatedMomentum.z()
+                )
             )
         );
     }

@@ -156,7 +156,8 @@ int main(int argc, char *argv[])
 
         if (!physics.flow)
         {
-            // conduction only: the phases stay where they are
+            // conduction only: the phases stay where they are (but evaporate)
+            #include "removeEvaporatedMetal.H"
             #include "TEqn.H"
         }
 
@@ -209,6 +210,8 @@ int main(int argc, char *argv[])
                 particles->addMetal(alpha1, alpha2);
                 rho == alpha1*rho1 + alpha2*rho2;
             }
+
+            #include "removeEvaporatedMetal.H"
 
             Foam::meltdem::correctMixture(mixture, mixtureCurvature);
 

@@ -43,7 +43,8 @@ Foam::meltdem::evaporationModel::evaporationModel
     cp_(readChecked(dict, "cp", false)),
     Th0_(readChecked(dict, "Th0", false)),
     CM_(readChecked(dict, "CM", true)),
-    cs_(dict.getOrDefault<scalar>("stickingCoefficient", 1))
+    cs_(dict.getOrDefault<scalar>("stickingCoefficient", 1)),
+    massLoss_(dict.getOrDefault<bool>("massLoss", false))
 {
     if (cs_ < 0 || cs_ > 1)
     {
@@ -53,6 +54,11 @@ Foam::meltdem::evaporationModel::evaporationModel
     }
     Info<< "evaporationModel: C_P = " << recoilFactor*pAmbient_ << " Pa, C_T = "
         << CT_ << " K, T_v = " << Tboil_ << " K" << endl;
+    if (massLoss_)
+    {
+        Info<< "evaporationModel: massLoss on: the evaporated metal leaves with its own"
+            << " enthalpy; heat loss mdot h_v (cp, Th0 not used)" << endl;
+    }
 }
 
 
@@ -64,10 +70,21 @@ Foam::scalar Foam::meltdem::evaporationModel::pv(const scalar T) const
 }
 
 
+Foam::scalar Foam::meltdem::evaporationModel::massFlux(const scalar T) const
+{
+    const scalar Tpos = max(T, SMALL);
+    return massFlowFactor*cs_*pv(Tpos)*sqrt(CM_/Tpos);
+}
+
+
 Foam::scalar Foam::meltdem::evaporationModel::fluxLoss(const scalar T) const
 {
     const scalar Tpos = max(T, SMALL);
-    const scalar mdot = massFlowFactor*cs_*pv(Tpos)*sqrt(CM_/Tpos);
+    const scalar mdot = massFlux(Tpos);
+    if (massLoss_)
+    {
+        return mdot*hv_;
+    }
     // below T_h0 h(T) < 0; the loss stays >= 0 (hv dominates in practice)
     return max(mdot*(hv_ + cp_*(Tpos - Th0_)), scalar(0));
 }
@@ -79,14 +96,15 @@ Foam::scalar Foam::meltdem::evaporationModel::fluxLossDerivative
 ) const
 {
     const scalar Tpos = max(T, SMALL);
-    const scalar mdot = massFlowFactor*cs_*pv(Tpos)*sqrt(CM_/Tpos);
-    const scalar h = hv_ + cp_*(Tpos - Th0_);
+    const scalar mdot = massFlux(Tpos);
+    const scalar h = massLoss_ ? hv_ : hv_ + cp_*(Tpos - Th0_);
+    const scalar dhdT = massLoss_ ? 0 : cp_;
     if (mdot*h <= 0)
     {
         return 0;
     }
     // d mdot/dT = mdot (C_T/T^2 - 1/(2T))
-    return max(mdot*(CT_/sqr(Tpos) - 0.5/Tpos)*h + mdot*cp_, scalar(0));
+    return max(mdot*(CT_/sqr(Tpos) - 0.5/Tpos)*h + mdot*dhdT, scalar(0));
 }
 
 
@@ -145,6 +163,33 @@ Foam::meltdem::evaporationModel::recoilPressure(const volScalarField& T) const
         }
     }
     return tp;
+}
+
+
+Foam::tmp<Foam::volScalarField> Foam::meltdem::evaporationModel::metalLossRate
+(
+    const volScalarField& T,
+    const volScalarField& alphaMetal
+) const
+{
+    tmp<volScalarField> tm
+    (
+        new volScalarField
+        (
+            IOobject("evaporationMetalLossRate", T.time().timeName(), mesh_,
+                     IOobject::NO_READ, IOobject::NO_WRITE, false),
+            mag(fvc::grad(alphaMetal))
+        )
+    );
+    volScalarField& m = tm.ref();
+    m.dimensions().reset(dimDensity/dimTime);
+    forAll(m, celli)
+    {
+        const scalar w = 2*max(min(alphaMetal[celli], scalar(1)), scalar(0));
+        m[celli] *= massLoss_ ? w*massFlux(T[celli]) : 0;
+    }
+    m.boundaryFieldRef() = Zero;
+    return tm;
 }
 
 

@@ -177,6 +177,7 @@ void Foam::functionObjects::meltdemBalance::start()
     momentum_ = foundObject<volVectorField>(UName_);
     laser_ = energy_ && foundObject<volScalarField>(laserName_);
     evap_ = energy_ && foundObject<volScalarField>(evapName_);
+    evapMass_ = foundObject<volScalarField::Internal>("evaporatedMassRate");
 
     scalar M, H;
     vector P;
@@ -200,7 +201,8 @@ void Foam::functionObjects::meltdemBalance::start()
             << ", enthalpy " << (energy_ ? "on" : "off")
             << ", momentum " << (momentum_ ? "on" : "off")
             << ", laser " << (laser_ ? "on" : "off")
-            << ", evaporation " << (evap_ ? "on" : "off") << nl;
+            << ", evaporation " << (evap_ ? "on" : "off")
+            << (evapMass_ ? " with mass loss" : "") << nl;
     }
 
     // sources() reduces over the ranks: every rank evaluates it before the master writes
@@ -256,13 +258,21 @@ void Foam::functionObjects::meltdemBalance::start()
         for (int c = 0; c < 3; ++c) os << ",momentumError" << xyz[c];
         os << ",momentumErrorRel";
     }
+    if (evapMass_)
+    {
+        os << ",evaporatedMass_cum";
+        if (energy_) os << ",evaporatedEnthalpy_cum";
+        if (momentum_) for (int c = 0; c < 3; ++c) os << ",evaporatedMomentum_cum" << xyz[c];
+    }
     os << nl;
 
     // the start state as first row, flows zero (a resumed run: its errors so far)
     const label nPer = 1 + (energy_ ? 2 : 0) + (momentum_ ? 3 : 0);
-    const scalar massErr = (M - M0_) - massIn_ - exchangeMass_;
-    const scalar HErr = (H - H0_) - enthalpyIn_ - laserE_ + evapE_ - exchangeEnthalpy_;
-    const vector PErr = (P - P0_) - momentumIn_ - gravityImp_ - exchangeMomentum_;
+    const scalar massErr = (M - M0_) - massIn_ - exchangeMass_ + evaporatedMass_;
+    const scalar HErr =
+        (H - H0_) - enthalpyIn_ - laserE_ + evapE_ - exchangeEnthalpy_ + evaporatedEnthalpy_;
+    const vector PErr =
+        (P - P0_) - momentumIn_ - gravityImp_ - exchangeMomentum_ + evaporatedMomentum_;
     writeRow
     (
         0, M, H, P, laserP, evapP, scalarList(nPer*patches_.size(), 0.0),
@@ -290,7 +300,9 @@ void Foam::functionObjects::meltdemBalance::saveState() const
         M0_, H0_, P0_.x(), P0_.y(), P0_.z(), massIn_, enthalpyIn_, laserE_, evapE_,
         enthalpyAbs_, momentumIn_.x(), momentumIn_.y(), momentumIn_.z(), gravityImp_.x(),
         gravityImp_.y(), gravityImp_.z(), momentumAbs_, exchangeMass_, exchangeEnthalpy_,
-        exchangeMomentum_.x(), exchangeMomentum_.y(), exchangeMomentum_.z()
+        exchangeMomentum_.x(), exchangeMomentum_.y(), exchangeMomentum_.z(),
+        evaporatedMass_, evaporatedEnthalpy_, evaporatedMomentum_.x(), evaporatedMomentum_.y(),
+        evaporatedMomentum_.z()
     };
     List<string> values(label(sizeof scalars/sizeof scalars[0]));
     forAll(values, i) values[i] = meltdem::exactScalar(scalars[i]);
@@ -315,10 +327,11 @@ bool Foam::functionObjects::meltdemBalance::restoreState()
     );
     if (!state.found("integrals")) return false;
     const List<string> values(state.get<List<string>>("integrals"));
-    if (values.size() != 22)
+    // (22: written before evaporation's mass loss was booked)
+    if (values.size() != 22 && values.size() != 27)
     {
         FatalIOErrorInFunction(state)
-            << "integrals: 22 values expected, found " << values.size()
+            << "integrals: 27 (or 22) values expected, found " << values.size()
             << exit(FatalIOError);
     }
     scalarList v(values.size());
@@ -329,6 +342,11 @@ bool Foam::functionObjects::meltdemBalance::restoreState()
     gravityImp_ = vector(v[13], v[14], v[15]); momentumAbs_ = v[16];
     exchangeMass_ = v[17]; exchangeEnthalpy_ = v[18];
     exchangeMomentum_ = vector(v[19], v[20], v[21]);
+    if (v.size() == 27)
+    {
+        evaporatedMass_ = v[22]; evaporatedEnthalpy_ = v[23];
+        evaporatedMomentum_ = vector(v[24], v[25], v[26]);
+    }
     if (log)
     {
         Info<< type() << " " << name() << ": continues the balance written at t = "
@@ -442,6 +460,12 @@ void Foam::functionObjects::meltdemBalance::writeRow
         for (direction c = 0; c < 3; ++c) os << ',' << PErr[c];
         os << ',' << PRel;
     }
+    if (evapMass_)
+    {
+        os << ',' << evaporatedMass_;
+        if (energy_) os << ',' << evaporatedEnthalpy_;
+        if (momentum_) for (direction c = 0; c < 3; ++c) os << ',' << evaporatedMomentum_[c];
+    }
     os << endl;
 }
 
@@ -459,13 +483,14 @@ Foam::functionObjects::meltdemBalance::meltdemBalance
     rhoM_(0), rhoG_(0), nuM_(0), nuG_(0),
     hasThermo_(false),
     cpM_(0), cpG_(0), kM_(0), kG_(0), L_(0), Ts_(0), Tl_(0),
-    energy_(false), momentum_(false), laser_(false), evap_(false),
+    energy_(false), momentum_(false), laser_(false), evap_(false), evapMass_(false),
     started_(false),
     M0_(0), H0_(0), P0_(Zero),
     massIn_(0), enthalpyIn_(0), laserE_(0), evapE_(0), enthalpyAbs_(0),
     momentumIn_(Zero), gravityImp_(Zero), momentumAbs_(0),
     lastIndex_(-1),
-    exchangeMass_(0), exchangeEnthalpy_(0), exchangeMomentum_(Zero)
+    exchangeMass_(0), exchangeEnthalpy_(0), exchangeMomentum_(Zero),
+    evaporatedMass_(0), evaporatedEnthalpy_(0), evaporatedMomentum_(Zero)
 {
     readProperties();
     read(dict);
@@ -677,6 +702,27 @@ bool Foam::functionObjects::meltdemBalance::execute()
     enthalpyAbs_ += mag(exH);
     momentumAbs_ += mag(exP);
 
+    // what evaporation took out of the metal (massLoss on), rates per volume
+    scalar evMass = 0, evH = 0;
+    vector evP(Zero);
+    if (evapMass_)
+    {
+        evMass = dt*gSum(lookupObject<volScalarField::Internal>("evaporatedMassRate").field()*V);
+        if (energy_ && foundObject<volScalarField::Internal>("evaporatedEnthalpyRate"))
+        {
+            evH = dt*gSum(lookupObject<volScalarField::Internal>("evaporatedEnthalpyRate").field()*V);
+        }
+        if (momentum_ && foundObject<volVectorField::Internal>("evaporatedMomentumRate"))
+        {
+            evP = dt*gSum(lookupObject<volVectorField::Internal>("evaporatedMomentumRate").field()*V);
+        }
+    }
+    evaporatedMass_ += evMass;
+    evaporatedEnthalpy_ += evH;
+    evaporatedMomentum_ += evP;
+    enthalpyAbs_ += mag(evH);
+    momentumAbs_ += mag(evP);
+
     last_.M = M;
     last_.H = H;
     last_.P = P;
@@ -690,6 +736,9 @@ bool Foam::functionObjects::meltdemBalance::execute()
     last_.exchangeMass = exMass;
     last_.exchangeEnthalpy = exH;
     last_.exchangeMomentum = exP;
+    last_.evaporatedMass = evMass;
+    last_.evaporatedEnthalpy = evH;
+    last_.evaporatedMomentum = evP;
 
     massIn_ += dt*massStep;
     enthalpyIn_ += dt*enthalpyStep;
@@ -700,13 +749,15 @@ bool Foam::functionObjects::meltdemBalance::execute()
     gravityImp_ += dt*gravityF;
     momentumAbs_ += dt*(momentumAbsStep + mag(gravityF));
 
-    const scalar massErr = (M - M0_) - massIn_ - exchangeMass_;
+    const scalar massErr = (M - M0_) - massIn_ - exchangeMass_ + evaporatedMass_;
     // relative to the larger of the metal at the start and now (a run may start empty)
     const scalar massRel = massErr/max(max(mag(M0_), mag(M)), VSMALL);
-    const scalar HErr = (H - H0_) - enthalpyIn_ - laserE_ + evapE_ - exchangeEnthalpy_;
+    const scalar HErr =
+        (H - H0_) - enthalpyIn_ - laserE_ + evapE_ - exchangeEnthalpy_ + evaporatedEnthalpy_;
     const scalar HRel = HErr/max(mag(H0_), VSMALL);
     const scalar HRelX = exchangedRel(HErr, max(mag(H - H0_), enthalpyAbs_));
-    const vector PErr = (P - P0_) - momentumIn_ - gravityImp_ - exchangeMomentum_;
+    const vector PErr =
+        (P - P0_) - momentumIn_ - gravityImp_ - exchangeMomentum_ + evaporatedMomentum_;
     const scalar PRel = exchangedRel(mag(PErr), max(mag(P - P0_), momentumAbs_));
 
     if (log)

@@ -72,6 +72,35 @@ bool Foam::meltdem::physicsTerms::linearisedHeatLoss
 }
 
 
+bool Foam::meltdem::physicsTerms::metalLossRate
+(
+    const volScalarField& T,
+    const volScalarField& alpha1,
+    volScalarField& rate
+) const
+{
+    bool any = false;
+    for (const physicsTerm& t : terms_)
+    {
+        tmp<volScalarField> r = t.metalLossRate(T, alpha1);
+        if (!r.valid())
+        {
+            continue;
+        }
+        if (any)
+        {
+            rate.primitiveFieldRef() += r().primitiveField();
+        }
+        else
+        {
+            rate.primitiveFieldRef() = r().primitiveField();
+        }
+        any = true;
+    }
+    return any;
+}
+
+
 Foam::tmp<Foam::surfaceScalarField> Foam::meltdem::physicsTerms::surfaceForce
 (
     const volScalarField& alpha1,

@@ -43,3 +43,17 @@ bool Foam::meltdem::evaporationTerm::linearisedHeatLoss
     dqdT = model_.heatLossDerivative(T, alpha1);
     return true;
 }
+
+
+Foam::tmp<Foam::volScalarField> Foam::meltdem::evaporationTerm::metalLossRate
+(
+    const volScalarField& T,
+    const volScalarField& alpha1
+) const
+{
+    if (!model_.massLoss())
+    {
+        return tmp<volScalarField>();
+    }
+    return model_.metalLossRate(T, alpha1);
+}
