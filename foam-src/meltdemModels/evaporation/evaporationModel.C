@@ -4,9 +4,13 @@
 
 #include "evaporationModel.H"
 #include "fvc.H"
+#include "fvm.H"
+#include "fvMatrices.H"
+#include "zeroGradientFvPatchFields.H"
 
 const Foam::scalar Foam::meltdem::evaporationModel::recoilFactor = 0.54;
 const Foam::scalar Foam::meltdem::evaporationModel::massFlowFactor = 0.82;
+const Foam::scalar Foam::meltdem::evaporationModel::gasAlpha = 0.01;
 
 namespace
 {
@@ -44,8 +48,22 @@ Foam::meltdem::evaporationModel::evaporationModel
     Th0_(readChecked(dict, "Th0", false)),
     CM_(readChecked(dict, "CM", true)),
     cs_(dict.getOrDefault<scalar>("stickingCoefficient", 1)),
-    massLoss_(dict.getOrDefault<bool>("massLoss", false))
+    massLoss_(dict.getOrDefault<bool>("massLoss", false)),
+    vapourJet_(dict.getOrDefault<bool>("vapourJet", false)),
+    spreadLength_(dict.getOrDefault<scalar>("vapourSpread", 0))
 {
+    if (spreadLength_ < 0)
+    {
+        FatalIOErrorInFunction(dict)
+            << "vapourSpread (" << spreadLength_ << ") must be >= 0 in " << dict.name()
+            << exit(FatalIOError);
+    }
+    if (vapourJet_ && !massLoss_)
+    {
+        FatalIOErrorInFunction(dict)
+            << "vapourJet on needs massLoss on (the vapour's volume is the evaporated metal's) in "
+            << dict.name() << exit(FatalIOError);
+    }
     if (cs_ < 0 || cs_ > 1)
     {
         FatalIOErrorInFunction(dict)
@@ -190,6 +208,83 @@ Foam::tmp<Foam::volScalarField> Foam::meltdem::evaporationModel::metalLossRate
     }
     m.boundaryFieldRef() = Zero;
     return tm;
+}
+
+
+Foam::tmp<Foam::volScalarField::Internal>
+Foam::meltdem::evaporationModel::vapourVolumeRate
+(
+    const volScalarField& T,
+    const volScalarField& alphaMetal,
+    const scalar rhoMetal,
+    const scalar rhoGas
+) const
+{
+    tmp<volScalarField::Internal> tv
+    (
+        new volScalarField::Internal
+        (
+            IOobject("evaporationVapourVolumeRate", T.time().timeName(), mesh_,
+                     IOobject::NO_READ, IOobject::NO_WRITE, false),
+            mesh_,
+            dimensionedScalar("zero", inv(dimTime), 0)
+        )
+    );
+    if (!vapourJet_)
+    {
+        return tv;
+    }
+    // the evaporated metal's volume as gas, where the metal loses it
+    const scalar expansion = 1/rhoGas - 1/rhoMetal;
+    volScalarField spread
+    (
+        IOobject("vapourSpread", T.time().timeName(), mesh_, IOobject::NO_READ, IOobject::NO_WRITE, false),
+        mesh_,
+        dimensionedScalar("zero", inv(dimTime), 0),
+        zeroGradientFvPatchScalarField::typeName
+    );
+    const tmp<volScalarField> tloss = metalLossRate(T, alphaMetal);
+    spread.primitiveFieldRef() = expansion*tloss().primitiveField();
+    const scalarField& V = mesh_.V().field();
+    const scalar total = gSum(spread.primitiveField()*V);
+    if (total <= 0)
+    {
+        return tv;
+    }
+    // spread over a length of two cells (a conservative implicit smoothing) and kept in
+    // the gas cells beyond the interface, normalised to the same total (HardtWondra2008):
+    // the interface itself is carried by a divergence-free flow
+    const scalar length = spreadLength_ > 0 ? spreadLength_ : 2/gMax(mesh_.deltaCoeffs().primitiveField());
+    const volScalarField::Internal source("vapourSource", spread());
+    fvScalarMatrix smoothing
+    (
+        fvm::Sp(dimensionedScalar("one", dimless, 1), spread)
+      - fvm::laplacian(dimensionedScalar("L2", dimArea, sqr(length)), spread)
+     ==
+        source
+    );
+    dictionary solverControls;
+    solverControls.add("solver", "PCG");
+    solverControls.add("preconditioner", "DIC");
+    solverControls.add("tolerance", 1e-12);
+    solverControls.add("relTol", 0);
+    smoothing.solve(solverControls);
+    scalarField& v = tv.ref().field();
+    forAll(v, celli)
+    {
+        v[celli] = alphaMetal[celli] < gasAlpha ? max(spread[celli], scalar(0)) : 0;
+    }
+    const scalar kept = gSum(v*V);
+    if (kept > 0)
+    {
+        v *= total/kept;
+    }
+    else
+    {
+        // no gas cell within reach of the smoothing: where the metal loses it
+        v = expansion*tloss().primitiveField();
+    }
+    return tv;
 }
 
 

@@ -101,6 +101,37 @@ bool Foam::meltdem::physicsTerms::metalLossRate
 }
 
 
+bool Foam::meltdem::physicsTerms::vapourVolumeRate
+(
+    const volScalarField& T,
+    const volScalarField& alpha1,
+    const scalar rhoMetal,
+    const scalar rhoGas,
+    volScalarField::Internal& rate
+) const
+{
+    bool any = false;
+    for (const physicsTerm& t : terms_)
+    {
+        tmp<volScalarField::Internal> r = t.vapourVolumeRate(T, alpha1, rhoMetal, rhoGas);
+        if (!r.valid())
+        {
+            continue;
+        }
+        if (any)
+        {
+            rate.field() += r().field();
+        }
+        else
+        {
+            rate.field() = r().field();
+        }
+        any = true;
+    }
+    return any;
+}
+
+
 Foam::tmp<Foam::surfaceScalarField> Foam::meltdem::physicsTerms::surfaceForce
 (
     const volScalarField& alpha1,

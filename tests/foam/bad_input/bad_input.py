@@ -57,6 +57,13 @@ VARIANTS = {
     "negative_boiling_point": ("evaporation Tboil = -3000", {"evaporation": "on"}, METAL, GAS,
                                "evaporation { pAmbient 1e5; CT 5e4; Tboil -3000; hv 6.583e6; cp 965; "
                                "Th0 663.731; CM 1.1095e-3; }\n", ["Tboil"]),
+    "vapour_jet_without_mass_loss": ("evaporation vapourJet on without massLoss", {"evaporation": "on"}, METAL, GAS,
+                                     "evaporation { pAmbient 1e5; CT 5e4; Tboil 3000; hv 6.583e6; cp 965; "
+                                     "Th0 663.731; CM 1.1095e-3; vapourJet on; }\n", ["vapourJet", "massLoss"]),
+    "negative_vapour_spread": ("evaporation vapourSpread = -1e-5", {"evaporation": "on"}, METAL, GAS,
+                               "evaporation { pAmbient 1e5; CT 5e4; Tboil 3000; hv 6.583e6; cp 965; "
+                               "Th0 663.731; CM 1.1095e-3; massLoss on; vapourJet on; vapourSpread -1e-5; }\n",
+                               ["vapourSpread"]),
     "missing_darcy_C": ("darcy on, darcy { b 1e-3; } (no C)", {"flow": "on", "darcy": "on"}, METAL, GAS,
                         "darcy { b 1e-3; }\n", ["'C'"]),
     "negative_thermal_courant": ("energyControls { maxThermalCo -1; }", {}, METAL, GAS,

@@ -57,3 +57,19 @@ Foam::tmp<Foam::volScalarField> Foam::meltdem::evaporationTerm::metalLossRate
     }
     return model_.metalLossRate(T, alpha1);
 }
+
+
+Foam::tmp<Foam::volScalarField::Internal> Foam::meltdem::evaporationTerm::vapourVolumeRate
+(
+    const volScalarField& T,
+    const volScalarField& alpha1,
+    const scalar rhoMetal,
+    const scalar rhoGas
+) const
+{
+    if (!model_.vapourJet())
+    {
+        return tmp<volScalarField::Internal>();
+    }
+    return model_.vapourVolumeRate(T, alpha1, rhoMetal, rhoGas);
+}
