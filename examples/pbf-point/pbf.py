@@ -207,9 +207,12 @@ def beam_xz(cfg, t):
     return beam_x(cfg, t), cfg["lz"] / 2
 
 
-def evaporation_dict():
-    return """evaporation
-{
+def evaporation_dict(vapour_jet=False):
+    """Fuchs2022 table 1; vapour_jet: the metal evaporates and its vapour streams off as gas
+    (massLoss, vapourJet: doc/foam_laser_evaporation.rst)."""
+    jet = "    massLoss on;\n    vapourJet on;\n" if vapour_jet else ""
+    return f"""evaporation
+{{
     pAmbient 1e5;
     CT 5e4;
     Tboil 3000;
@@ -217,7 +220,7 @@ def evaporation_dict():
     cp 965;
     Th0 663.731;
     CM 1.1095e-3;
-}
+{jet}}}
 """
 
 
@@ -307,7 +310,7 @@ def refinement_dict(cfg, levels, interval):
 
 
 def build(case, variant, dx=None, dist=None, n=None, bed_dir=None, seed=4711, gas_cp=G["cp"], shadow=True,
-          bed_process="pour", refine=0, refine_interval=1, laser_args=None):
+          bed_process="pour", refine=0, refine_interval=1, laser_args=None, vapour_jet=False):
     """variant: a name in VARIANTS or the configuration itself (examples/pbf-layer's, with its
     'variant' and 'scene')."""
     cfg = dict(VARIANTS[variant]) if isinstance(variant, str) else dict(variant)
@@ -315,6 +318,7 @@ def build(case, variant, dx=None, dist=None, n=None, bed_dir=None, seed=4711, ga
     cfg["gas_cp"] = gas_cp
     cfg["shadow"] = shadow
     cfg["refine"] = refine
+    cfg["vapour_jet"] = vapour_jet
     cfg["laser_args"] = laser.absorptivity_meta(laser_args, ETA)
     if dx:
         cfg["dx"] = dx
@@ -375,7 +379,7 @@ def build(case, variant, dx=None, dist=None, n=None, bed_dir=None, seed=4711, ga
 gas {{ cp {cfg['gas_cp']!r}; k {G['k']!r}; }}
 darcy {{ C 1e10; b 1e-3; }}
 energyControls {{ nCorrectors 20; tolerance 1e-10; }}
-{laser_dict(cfg)}{evaporation_dict()}particles
+{laser_dict(cfg)}{evaporation_dict(cfg.get('vapour_jet', False))}particles
 {{
     lammpsInput     in.particles;
     distribution    {cfg['dist']};

@@ -46,6 +46,8 @@ def main(scene=VARIANT, doc=__doc__, argv=None):
                     help="adaptive refinement: base cells 2^L x --dx, refined to --dx in the pool, under the beam "
                     "and its path ahead and around the grains near them (refinement{})")
     ap.add_argument("--refine-interval", type=int, default=1, metavar="N", help="fluid steps between mesh updates")
+    ap.add_argument("--vapour-jet", action="store_true",
+                    help="the metal evaporates and its vapour streams off as gas (evaporation massLoss, vapourJet)")
     laser.add_absorptivity_arguments(ap, pbf.ETA)
     args = ap.parse_args(argv)
     laser.check_absorptivity_arguments(ap, args, pbf.ETA)
@@ -54,7 +56,8 @@ def main(scene=VARIANT, doc=__doc__, argv=None):
     if args.action in ("build", "all"):
         pbf.build(case, variant, dx=args.dx, dist=args.dist, n=args.grains, bed_dir=args.bed,
                   gas_cp=args.gas_cp, shadow=not args.no_shadow, bed_process=args.bed_process,
-                  refine=args.refine, refine_interval=args.refine_interval, laser_args=args)
+                  refine=args.refine, refine_interval=args.refine_interval, laser_args=args,
+                  vapour_jet=args.vapour_jet)
     if args.action in ("run", "all"):
         pbf.run(case, args.np, args.timeout)
     if args.action in ("analyse", "all"):
