@@ -27,6 +27,7 @@ import numpy as np
 
 from meltdem import paths
 from meltdem.case import coupled as cc
+from meltdem.case import evaporation
 from meltdem.case import foam as fc
 from meltdem.case import laser
 from meltdem.io import dumps
@@ -155,11 +156,7 @@ laser
     position     ({CX!r} {CY!r} {LZ - a.dx / 2!r});
     tOn          0;
 {t_off}}}
-evaporation
-{{
-    pAmbient 1e5; CT 5e4; Tboil 3000; hv 6.583e6; cp {M['cp']!r}; Th0 663.731; CM 1.1095e-3;
-}}
-particles
+{evaporation.steel_dict(M['cp'])}particles
 {{
     lammpsInput     in.particles;
     distribution    {a.distribution};

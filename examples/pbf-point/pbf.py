@@ -19,6 +19,7 @@ import numpy as np
 
 from meltdem import paths
 from meltdem.case import coupled as cc
+from meltdem.case import evaporation
 from meltdem.case import foam as fc
 from meltdem.case import laser
 from meltdem.io import dumps
@@ -207,23 +208,6 @@ def beam_xz(cfg, t):
     return beam_x(cfg, t), cfg["lz"] / 2
 
 
-def evaporation_dict(vapour_jet=False):
-    """Fuchs2022 table 1; vapour_jet: the metal evaporates and its vapour streams off as gas
-    (massLoss, vapourJet: doc/foam_laser_evaporation.rst)."""
-    jet = "    massLoss on;\n    vapourJet on;\n" if vapour_jet else ""
-    return f"""evaporation
-{{
-    pAmbient 1e5;
-    CT 5e4;
-    Tboil 3000;
-    hv 6.583e6;
-    cp 965;
-    Th0 663.731;
-    CM 1.1095e-3;
-{jet}}}
-"""
-
-
 def particles_input(cfg, bed):
     lx, ly, lz = cfg["lx"], cfg["ly"], cfg["lz"]
     estar_wall = E_DEM / (2 * (1 - NU_DEM ** 2))
@@ -379,7 +363,7 @@ def build(case, variant, dx=None, dist=None, n=None, bed_dir=None, seed=4711, ga
 gas {{ cp {cfg['gas_cp']!r}; k {G['k']!r}; }}
 darcy {{ C 1e10; b 1e-3; }}
 energyControls {{ nCorrectors 20; tolerance 1e-10; }}
-{laser_dict(cfg)}{evaporation_dict(cfg.get('vapour_jet', False))}particles
+{laser_dict(cfg)}{evaporation.steel_dict(965.0, cfg.get('vapour_jet', False))}particles
 {{
     lammpsInput     in.particles;
     distribution    {cfg['dist']};

@@ -13,6 +13,7 @@ LAMMPS (the grains). See README.md.
 import argparse
 import os
 
+from meltdem.case import evaporation
 from meltdem.case import laser
 from meltdem.scene import Scene
 
@@ -46,8 +47,7 @@ def main(scene=VARIANT, doc=__doc__, argv=None):
                     help="adaptive refinement: base cells 2^L x --dx, refined to --dx in the pool, under the beam "
                     "and its path ahead and around the grains near them (refinement{})")
     ap.add_argument("--refine-interval", type=int, default=1, metavar="N", help="fluid steps between mesh updates")
-    ap.add_argument("--vapour-jet", action="store_true",
-                    help="the metal evaporates and its vapour streams off as gas (evaporation massLoss, vapourJet)")
+    ap.add_argument("--vapour-jet", action="store_true", help=evaporation.VAPOUR_JET_HELP)
     laser.add_absorptivity_arguments(ap, pbf.ETA)
     args = ap.parse_args(argv)
     laser.check_absorptivity_arguments(ap, args, pbf.ETA)

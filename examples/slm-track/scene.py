@@ -3,7 +3,7 @@
 coupled meltdemFoam + LAMMPS.
 
     scene.py build CASE [--ci | --full] [--cell H] [--bed DUMP] [--track L] [--distribution M]
-                   [--gas-cp CP] [--gas-mu MU] [--fluid-dt DT] [--no-surface]
+                   [--gas-cp CP] [--gas-mu MU] [--fluid-dt DT] [--no-surface] [--vapour-jet]
     scene.py run CASE [--np N]
     scene.py analyse CASE
     scene.py all CASE [--ci | --full] [--np N] [build options]
@@ -28,6 +28,7 @@ import numpy as np
 from meltdem import paths
 from meltdem.analysis import profiles
 from meltdem.case import coupled as cc
+from meltdem.case import evaporation
 from meltdem.case import foam as fc
 from meltdem.case import laser as beam
 from meltdem.io import dumps
@@ -185,7 +186,7 @@ def refinement_dict(levels, interval=1):
 
 
 def build(case, variant, cell=None, bed=None, track=None, distribution="overlap", np_=1, gas_cp=None, fluid_dt=None,
-          gas_mu=None, surface=None, refine=0, refine_interval=1, courant=None, laser_args=None):
+          gas_mu=None, surface=None, refine=0, refine_interval=1, courant=None, laser_args=None, vapour_jet=False):
     v = dict(VARIANTS[variant])
     surface = SURFACE if surface is None else surface
     gas_cp = gas_cp or GAS_CP_CASE
@@ -258,14 +259,16 @@ def build(case, variant, cell=None, bed=None, track=None, distribution="overlap"
 """
     fc.meltdem_properties(case, physics=dict(flow="on", energy="on", darcy="on",
                                              surfaceTension="on" if surface else "off",
-                                             marangoni="on" if surface else "off", laser="on", particles="on"),
+                                             marangoni="on" if surface else "off", laser="on", particles="on",
+                                             evaporation="on" if vapour_jet else "off",
+                                             recoil="on" if vapour_jet else "off"),
                           surface=dict(sigma0=SIGMA0, dSigmadT=DSIGMA, Tsigma0=TMELT, sigmaMin=0.2),
                           extra=f"""metal {{ cp {CP!r}; k {K!r}; L {LATENT!r}; Tsolidus {TSOL!r}; Tliquidus {TLIQ!r}; }}
 gas {{ cp {gas_cp!r}; k {GAS['k']!r}; }}
 darcy {{ C 1e10; b 1e-3; }}
 energyControls {{ nCorrectors 50; tolerance 1e-13; }}
 {laser}
-particles
+{evaporation.steel_dict(CP, vapour_jet=True) if vapour_jet else ""}particles
 {{
     lammpsInput     in.particles;
     distribution    {distribution};
@@ -277,6 +280,7 @@ particles
     meta = dict(scene="slm-track", variant=variant, n_cells=list(n), particles=nparticles, t_scan_s=t_scan,
                 t_end_s=t_end, laser_x0_m=v["x0"], laser_x1_m=v["x1"], track_z_m=zc, dt_capillary_s=dt_cap,
                 distribution=distribution, bed_dump=os.path.abspath(dump), gas_cp=gas_cp, gas_mu=gas_mu,
+                vapour_jet=vapour_jet,
                 fluid_dt_s=n_sub * DEM_DT, courant=courant, refine=refine, base_cell=h,
                 **beam.absorptivity_meta(laser_args, ETA),
                 **{k: v[k] for k in ("lx", "lz", "top", "sub", "cell", "cool", "write")})
@@ -571,6 +575,8 @@ def main(argv=None):
                     help="adaptive refinement: base cells 2^L x --cell, refined to --cell in the pool, under "
                     "the beam and its path ahead and around the grains near them (refinement{})")
     ap.add_argument("--refine-interval", type=int, default=1, metavar="N", help="fluid steps between mesh updates")
+    ap.add_argument("--vapour-jet", action="store_true",
+                    help="evaporation (Fuchs2022's steel data) and recoil on, and " + evaporation.VAPOUR_JET_HELP)
     beam.add_absorptivity_arguments(ap, ETA)
     a = ap.parse_args(argv)
     beam.check_absorptivity_arguments(ap, a, ETA)
@@ -579,7 +585,8 @@ def main(argv=None):
     if a.command in ("build", "all"):
         bed = a.bed if a.bed in (None, "spread") else os.path.abspath(a.bed)
         build(case, variant, a.cell, bed, a.track, a.distribution, a.np, a.gas_cp,
-              a.fluid_dt, a.gas_mu, a.surface, a.refine, a.refine_interval, a.courant, laser_args=a)
+              a.fluid_dt, a.gas_mu, a.surface, a.refine, a.refine_interval, a.courant, laser_args=a,
+              vapour_jet=a.vapour_jet)
     if a.command in ("run", "all"):
         run(case, a.np)
     if a.command in ("analyse", "all"):

@@ -55,7 +55,8 @@ def main():
                          s["track_width_m"], s["gaussian_width_m"], 0.3, xfail=XFAIL_BED_WIDTH)
     ok &= check_relative(TEST, "median speed of the ejected particles [m/s] vs thesis ~1 m/s",
                          s["ejection_speed_median_m_per_s"], 1.0, 0.5,
-                         xfail="no vapour recoil or gas jet in the model; grains move only by contacts and the melt")
+                         xfail="no vapour recoil or gas jet in the default run (--vapour-jet has them: "
+                         "scenes.slm-track.vapour-jet); grains move only by contacts and the melt")
     ok &= check_at_most(TEST, "DEM updates capped by the 10 m/s speed limit (fix nve/limit; pop-corn watch)",
                         s["dem_updates_speed_limited"], 0)
     report(TEST, "particles ejected (centre above the bed top, moving up) (info)", s["particles_ejected"],
