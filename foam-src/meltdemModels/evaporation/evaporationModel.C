@@ -214,7 +214,7 @@ Foam::tmp<Foam::volScalarField> Foam::meltdem::evaporationModel::metalLossRate
 Foam::tmp<Foam::volScalarField::Internal>
 Foam::meltdem::evaporationModel::vapourVolumeRate
 (
-    const volScalarField& T,
+    const volScalarField& metalLossRate,
     const volScalarField& alphaMetal,
     const scalar rhoMetal,
     const scalar rhoGas
@@ -224,7 +224,7 @@ Foam::meltdem::evaporationModel::vapourVolumeRate
     (
         new volScalarField::Internal
         (
-            IOobject("evaporationVapourVolumeRate", T.time().timeName(), mesh_,
+            IOobject("evaporationVapourVolumeRate", mesh_.time().timeName(), mesh_,
                      IOobject::NO_READ, IOobject::NO_WRITE, false),
             mesh_,
             dimensionedScalar("zero", inv(dimTime), 0)
@@ -238,13 +238,12 @@ Foam::meltdem::evaporationModel::vapourVolumeRate
     const scalar expansion = 1/rhoGas - 1/rhoMetal;
     volScalarField spread
     (
-        IOobject("vapourSpread", T.time().timeName(), mesh_, IOobject::NO_READ, IOobject::NO_WRITE, false),
+        IOobject("vapourSpread", mesh_.time().timeName(), mesh_, IOobject::NO_READ, IOobject::NO_WRITE, false),
         mesh_,
         dimensionedScalar("zero", inv(dimTime), 0),
         zeroGradientFvPatchScalarField::typeName
     );
-    const tmp<volScalarField> tloss = metalLossRate(T, alphaMetal);
-    spread.primitiveFieldRef() = expansion*tloss().primitiveField();
+    spread.primitiveFieldRef() = expansion*metalLossRate.primitiveField();
     const scalarField& V = mesh_.V().field();
     const scalar total = gSum(spread.primitiveField()*V);
     if (total <= 0)
@@ -282,7 +281,7 @@ Foam::meltdem::evaporationModel::vapourVolumeRate
     else
     {
         // no gas cell within reach of the smoothing: where the metal loses it
-        v = expansion*tloss().primitiveField();
+        v = expansion*metalLossRate.primitiveField();
     }
     return tv;
 }

@@ -103,7 +103,7 @@ bool Foam::meltdem::physicsTerms::metalLossRate
 
 bool Foam::meltdem::physicsTerms::vapourVolumeRate
 (
-    const volScalarField& T,
+    const volScalarField& metalLossRate,
     const volScalarField& alpha1,
     const scalar rhoMetal,
     const scalar rhoGas,
@@ -113,7 +113,7 @@ bool Foam::meltdem::physicsTerms::vapourVolumeRate
     bool any = false;
     for (const physicsTerm& t : terms_)
     {
-        tmp<volScalarField::Internal> r = t.vapourVolumeRate(T, alpha1, rhoMetal, rhoGas);
+        tmp<volScalarField::Internal> r = t.vapourVolumeRate(metalLossRate, alpha1, rhoMetal, rhoGas);
         if (!r.valid())
         {
             continue;

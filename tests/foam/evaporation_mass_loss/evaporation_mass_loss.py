@@ -69,17 +69,24 @@ evaporation {{ pAmbient {P_AMB!r}; CT {CT!r}; Tboil {TBOIL!r}; hv {HV!r}; cp 965
     return g
 
 
+def run(case, test):
+    """The solver in case: (its exit code checked, meltdemBalance's rows or None)."""
+    rc = fc.run([fc.solver()], case, "log.solver", check=False)
+    ok = check_at_most(test, "solver exit code", rc, 0)
+    if rc != 0:
+        return ok, None
+    return ok, np.genfromtxt(os.path.join(case, "postProcessing", "balance", "0", "balance.csv"),
+                             delimiter=",", names=True)
+
+
 def main():
     keep = "--keep" in sys.argv
     work = tempfile.mkdtemp(prefix="evap_mass.")
     case = os.path.join(work, "pool")
     g = build(case)
-    rc = fc.run([fc.solver()], case, "log.solver", check=False)
-    ok = check_at_most(TEST, "solver exit code", rc, 0)
-    if rc != 0:
+    ok, bal = run(case, TEST)
+    if bal is None:
         return fc.finish(False, work, keep, shown=case)
-    bal = np.genfromtxt(os.path.join(case, "postProcessing", "balance", "0", "balance.csv"),
-                        delimiter=",", names=True)
     area = LX * g.dz
     first = float(bal["evaporatedMass_cum"][1])
     ref = float(mass_flux(T0)) * area * DT

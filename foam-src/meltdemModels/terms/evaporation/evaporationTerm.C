@@ -61,7 +61,7 @@ Foam::tmp<Foam::volScalarField> Foam::meltdem::evaporationTerm::metalLossRate
 
 Foam::tmp<Foam::volScalarField::Internal> Foam::meltdem::evaporationTerm::vapourVolumeRate
 (
-    const volScalarField& T,
+    const volScalarField& metalLossRate,
     const volScalarField& alpha1,
     const scalar rhoMetal,
     const scalar rhoGas
@@ -71,5 +71,5 @@ Foam::tmp<Foam::volScalarField::Internal> Foam::meltdem::evaporationTerm::vapour
     {
         return tmp<volScalarField::Internal>();
     }
-    return model_.vapourVolumeRate(T, alpha1, rhoMetal, rhoGas);
+    return model_.vapourVolumeRate(metalLossRate, alpha1, rhoMetal, rhoGas);
 }
