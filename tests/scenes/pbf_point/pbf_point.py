@@ -46,10 +46,11 @@ NO_KICK = ("; no recoil, and since 53da1c5 no grain is kicked out of freezing me
 LIMIT_S = float(os.environ.get("MELTDEM_PBF_LIMIT_S", "420"))
 
 
-def run_case(case, variant, bed_dir=None):
-    """Build (on the bed in bed_dir when given) and run; a solver stop is reported (the analysis
-    still runs on what was written). Returns (summary, the solver's fatal message or None)."""
-    pbf.build(case, variant, bed_dir=bed_dir)
+def run_case(case, variant, bed_dir=None, **options):
+    """Build (on the bed in bed_dir when given; options: pbf.build's) and run; a solver stop is
+    reported (the analysis still runs on what was written). Returns (summary, the solver's fatal
+    message or None)."""
+    pbf.build(case, variant, bed_dir=bed_dir, **options)
     stop = None
     try:
         pbf.run(case, 1, LIMIT_S)

@@ -22,7 +22,6 @@ from meltdem.testing.report import check_at_least, report
 
 SRC = paths.source_dir()
 PP = load_module(os.path.join(SRC, "tests", "scenes", "pbf_point", "pbf_point.py"))
-pbf = PP.pbf
 TEST = "scenes.pbf-point.vapour-jet"
 
 
@@ -32,15 +31,7 @@ def main():
     bed = os.path.join(work, "bed")
     shutil.copytree(PP.KEPT_BED, bed)
     case = os.path.join(work, "jet")
-    pbf.build(case, "point-ci", bed_dir=bed, vapour_jet=True)
-    stop = None
-    try:
-        pbf.run(case, 1, PP.LIMIT_S)
-    except RuntimeError as e:
-        stop = pbf.stop_reason(case) or str(e)[-300:]
-        print("solver stopped:", stop)
-    s = pbf.summary(case)
-    pbf.print_summary(s)
+    s, stop = PP.run_case(case, "point-ci", bed_dir=bed, vapour_jet=True)
     ok = PP.common_checks(TEST, case, s, stop)
     bal = np.genfromtxt(os.path.join(case, "postProcessing", "particleBalance", "0", "balance.csv"),
                         delimiter=",", names=True)
