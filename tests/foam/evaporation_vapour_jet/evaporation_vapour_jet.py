@@ -38,10 +38,11 @@ DEPTH = 0.5e-3
 DT, STEPS = 2e-7, 100
 
 
-def build(case):
-    g = fc.Grid2D(LX, LY, N, 2 * N)
-    g.block_mesh(case, patches={"top": ("atmosphere", "patch")})
-    alpha = np.where(g.y < DEPTH, 1.0, 0.0)
+def build(case, grid=None, nz=1, extra_properties=""):
+    """The pool on grid (default N x 2N cells), nz cells deep (foam.amr_evaporation: 3D, refining)."""
+    g = grid or fc.Grid2D(LX, LY, N, 2 * N)
+    g.block_mesh(case, patches={"top": ("atmosphere", "patch")}, nz=nz)
+    alpha = np.tile(np.where(g.y < DEPTH, 1.0, 0.0), nz)
     zg = "type zeroGradient;"
     fc.field(case, "alpha.metal", "[0 0 0 0 0 0 0]", alpha,
              {"walls": zg, "atmosphere": "type inletOutlet; inletValue uniform 0; value uniform 0;"})
@@ -60,7 +61,7 @@ gas {{ cp 520; k 0.026; }}
 energyControls {{ nCorrectors 50; tolerance 1e-12; }}
 evaporation {{ pAmbient {ML.P_AMB!r}; CT {ML.CT!r}; Tboil {ML.TBOIL!r}; hv {ML.HV!r}; cp 965; Th0 663.731;
               CM {ML.CM!r}; massLoss on; vapourJet on; }}
-"""
+{extra_properties}"""
     fc.meltdem_properties(case, physics={"flow": "on", "energy": "on", "evaporation": "on",
                                          "surfaceTension": "off"}, extra=extra)
     fc.control_dict(case, "meltdemFoam", STEPS * DT, DT, DT, adjustable=False,
@@ -91,7 +92,11 @@ def patch_flux(case, time, patch="atmosphere"):
     m = re.search(r"value\s+nonuniform\s+List<scalar>\s*\d+\s*\((.*?)\)\s*;", block, re.S)
     if m:
         return float(np.sum(np.array(m.group(1).split(), dtype=float)))
-    return float(re.search(r"value\s+uniform\s+(\S+);", block).group(1)) * N
+    mesh = os.path.join(case, time, "polyMesh", "boundary")   # written where a refining mesh changed
+    if not os.path.exists(mesh):
+        mesh = os.path.join(case, "constant", "polyMesh", "boundary")
+    faces = int(re.search(patch + r"\s*\{[^}]*nFaces\s+(\d+);", open(mesh).read(), re.S).group(1))
+    return float(re.search(r"value\s+uniform\s+(\S+);", block).group(1)) * faces
 
 
 def main():

@@ -37,10 +37,11 @@ T_END = 0.03
 
 
 def build(case, n=40, alpha_tol="1e-14", nz=1, t_end=T_END, extra_properties="", extra_functions="",
-          p_ref_cell=None):
+          p_ref_cell=None, extra_physics=None):
     """The dam break on n x n cells of 0.1 mm (4 mm / n); nz > 1: a 3D box nz cells deep (walls in
     front and behind), the 2D layout repeated through it. extra_properties goes into
-    meltdemProperties, extra_functions into controlDict's functions (foam.amr_dam_break)."""
+    meltdemProperties, extra_physics into its physics{} and extra_functions into controlDict's
+    functions (foam.amr_dam_break, foam.amr_evaporation)."""
     g = fc.Grid2D(4e-3, 4e-3, n, n)
     g.block_mesh(case, patches={"bottom": ("floor", "wall")}, nz=nz)
     floor = g.y < 1e-3
@@ -63,8 +64,8 @@ gas {{ cp 10; k 0.026; }}
 darcy {{ C 1e10; b 1e-3; }}
 energyControls {{ nCorrectors 50; tolerance 1e-12; }}
 {extra_properties}"""
-    fc.meltdem_properties(case, physics={"flow": "on", "energy": "on", "darcy": "on",
-                                         "surfaceTension": "off"}, extra=extra)
+    physics = {"flow": "on", "energy": "on", "darcy": "on", "surfaceTension": "off"}
+    fc.meltdem_properties(case, physics={**physics, **(extra_physics or {})}, extra=extra)
     fc.control_dict(case, "meltdemFoam", t_end, 1e-5, t_end / 3, max_co=0.3, max_alpha_co=0.3,
                     max_dt=2e-4, extra=f"""functions
 {{
