@@ -268,18 +268,7 @@ void Foam::functionObjects::meltdemBalance::start()
 
     // the start state as first row, flows zero (a resumed run: its errors so far)
     const label nPer = 1 + (energy_ ? 2 : 0) + (momentum_ ? 3 : 0);
-    const scalar massErr = (M - M0_) - massIn_ - exchangeMass_ + evaporatedMass_;
-    const scalar HErr =
-        (H - H0_) - enthalpyIn_ - laserE_ + evapE_ - exchangeEnthalpy_ + evaporatedEnthalpy_;
-    const vector PErr =
-        (P - P0_) - momentumIn_ - gravityImp_ - exchangeMomentum_ + evaporatedMomentum_;
-    writeRow
-    (
-        0, M, H, P, laserP, evapP, scalarList(nPer*patches_.size(), 0.0),
-        massErr, massErr/max(max(mag(M0_), mag(M)), VSMALL),
-        HErr, HErr/max(mag(H0_), VSMALL), exchangedRel(HErr, max(mag(H - H0_), enthalpyAbs_)),
-        PErr, exchangedRel(mag(PErr), max(mag(P - P0_), momentumAbs_))
-    );
+    writeRow(0, M, H, P, laserP, evapP, scalarList(nPer*patches_.size(), 0.0), errors(M, H, P));
 }
 
 
@@ -368,6 +357,27 @@ Foam::scalar Foam::functionObjects::meltdemBalance::exchangedRel
 }
 
 
+Foam::functionObjects::meltdemBalance::balanceErrors
+Foam::functionObjects::meltdemBalance::errors
+(
+    const scalar M,
+    const scalar H,
+    const vector& P
+) const
+{
+    balanceErrors e;
+    e.mass = (M - M0_) - massIn_ - exchangeMass_ + evaporatedMass_;
+    // relative to the larger of the metal at the start and now (a run may start empty)
+    e.massRel = e.mass/max(max(mag(M0_), mag(M)), VSMALL);
+    e.H = (H - H0_) - enthalpyIn_ - laserE_ + evapE_ - exchangeEnthalpy_ + evaporatedEnthalpy_;
+    e.HRel = e.H/max(mag(H0_), VSMALL);
+    e.HRelExchanged = exchangedRel(e.H, max(mag(H - H0_), enthalpyAbs_));
+    e.P = (P - P0_) - momentumIn_ - gravityImp_ - exchangeMomentum_ + evaporatedMomentum_;
+    e.PRel = exchangedRel(mag(e.P), max(mag(P - P0_), momentumAbs_));
+    return e;
+}
+
+
 Foam::vector Foam::functionObjects::meltdemBalance::gravity() const
 {
     // solvers register g on Time (meshObjects::gravity), older ones on the mesh
@@ -426,13 +436,7 @@ void Foam::functionObjects::meltdemBalance::writeRow
     const scalar laserP,
     const scalar evapP,
     const UList<scalar>& patchCols,
-    const scalar massErr,
-    const scalar massRel,
-    const scalar HErr,
-    const scalar HRel,
-    const scalar HRelX,
-    const vector& PErr,
-    const scalar PRel
+    const balanceErrors& err
 )
 {
     if (!Pstream::master() || !os_.valid()) return;
@@ -453,12 +457,12 @@ void Foam::functionObjects::meltdemBalance::writeRow
         for (direction c = 0; c < 3; ++c) os << ',' << momentumIn_[c];
         for (direction c = 0; c < 3; ++c) os << ',' << gravityImp_[c];
     }
-    os << ',' << massErr << ',' << massRel;
-    if (energy_) os << ',' << HErr << ',' << HRel << ',' << HRelX;
+    os << ',' << err.mass << ',' << err.massRel;
+    if (energy_) os << ',' << err.H << ',' << err.HRel << ',' << err.HRelExchanged;
     if (momentum_)
     {
-        for (direction c = 0; c < 3; ++c) os << ',' << PErr[c];
-        os << ',' << PRel;
+        for (direction c = 0; c < 3; ++c) os << ',' << err.P[c];
+        os << ',' << err.PRel;
     }
     if (evapMass_)
     {
@@ -749,35 +753,21 @@ bool Foam::functionObjects::meltdemBalance::execute()
     gravityImp_ += dt*gravityF;
     momentumAbs_ += dt*(momentumAbsStep + mag(gravityF));
 
-    const scalar massErr = (M - M0_) - massIn_ - exchangeMass_ + evaporatedMass_;
-    // relative to the larger of the metal at the start and now (a run may start empty)
-    const scalar massRel = massErr/max(max(mag(M0_), mag(M)), VSMALL);
-    const scalar HErr =
-        (H - H0_) - enthalpyIn_ - laserE_ + evapE_ - exchangeEnthalpy_ + evaporatedEnthalpy_;
-    const scalar HRel = HErr/max(mag(H0_), VSMALL);
-    const scalar HRelX = exchangedRel(HErr, max(mag(H - H0_), enthalpyAbs_));
-    const vector PErr =
-        (P - P0_) - momentumIn_ - gravityImp_ - exchangeMomentum_ + evaporatedMomentum_;
-    const scalar PRel = exchangedRel(mag(PErr), max(mag(P - P0_), momentumAbs_));
-
+    const balanceErrors err(errors(M, H, P));
     if (log)
     {
         Info<< type() << " " << name() << ": metal mass " << M
-            << " rel. error " << massRel;
+            << " rel. error " << err.massRel;
         if (energy_)
         {
-            Info<< ", enthalpy " << H << " rel. error " << HRel
-                << " (" << HRelX << " of the heat exchanged)";
+            Info<< ", enthalpy " << H << " rel. error " << err.HRel
+                << " (" << err.HRelExchanged << " of the heat exchanged)";
         }
-        if (momentum_) Info<< ", momentum rel. error " << PRel;
+        if (momentum_) Info<< ", momentum rel. error " << err.PRel;
         Info<< nl;
     }
 
-    writeRow
-    (
-        dt, M, H, P, laserP, evapP, patchCols,
-        massErr, massRel, HErr, HRel, HRelX, PErr, PRel
-    );
+    writeRow(dt, M, H, P, laserP, evapP, patchCols, err);
     if (time_.writeTime())
     {
         saveState();
