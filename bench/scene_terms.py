@@ -3,8 +3,10 @@
 all its terms on (the default), then Marangoni, surface tension (with Marangoni, which needs it),
 evaporation with recoil, and all of them off; each run's melt-pool result, fluid steps and solver
 CPU. The switches are set in the built case's physics{} (meltdem.case.foam.set_physics), so the
-mesh, the bed and the steps' limits are the default's. single-track has its own table
-(bench/single_track.py terms). Writes scene_terms.md and .png next to this script.
+mesh, the bed and the steps' limits are the default's. Terms the scenes leave off by default are
+switched on by their build option (--vapour-jet: evaporation's mass loss and vapour jet).
+single-track has its own table (bench/single_track.py terms). Writes scene_terms.md and .png next
+to this script.
 
     /usr/bin/python3 bench/scene_terms.py [--scenes ded-stream,pbf-point,...] [--jobs 2] [--work DIR]
                                           [--out DIR] [--from-results] [--keep-done]
@@ -30,6 +32,8 @@ ROWS = [("all", "all on (default)", {}),
         ("no-evaporation", "evaporation and recoil off", {"evaporation": "off", "recoil": "off"}),
         ("none", "all four off", {"surfaceTension": "off", "marangoni": "off", "evaporation": "off",
                                   "recoil": "off"})]
+# terms off by default, switched on by a build option (rows only for scenes that take it)
+ON_ROWS = [("vapour-jet", "+ mass loss and vapour jet (--vapour-jet)", "--vapour-jet")]
 
 
 def _um(key, scale=1.0):
@@ -38,19 +42,19 @@ def _um(key, scale=1.0):
 
 # per scene: terms it has on, its result columns (label, from summary.json)
 SCENES = {
-    "ded-stream": dict(terms={"surfaceTension", "marangoni", "evaporation", "recoil"},
+    "ded-stream": dict(terms={"surfaceTension", "marangoni", "evaporation", "recoil"}, options={"--vapour-jet"},
                        columns=[("pool diameter 0.018 ms [µm]", _um("pool_diameter_at_0.018ms_um")),
                                 ("pool depth, end [µm]", lambda s: s["pool_depth_um"][-1]),
                                 ("peak T [K]", lambda s: max(s["peak_T_K"]))]),
-    "pbf-point": dict(terms={"surfaceTension", "marangoni", "evaporation", "recoil"},
+    "pbf-point": dict(terms={"surfaceTension", "marangoni", "evaporation", "recoil"}, options={"--vapour-jet"},
                       columns=[("pool width max [µm]", _um("melt_pool_width_max_um")),
                                ("pool depth max [µm]", _um("melt_pool_depth_max_um")),
                                ("peak T [K]", _um("peak_metal_T_K"))]),
-    "pbf-line": dict(terms={"surfaceTension", "marangoni", "evaporation", "recoil"},
+    "pbf-line": dict(terms={"surfaceTension", "marangoni", "evaporation", "recoil"}, options={"--vapour-jet"},
                      columns=[("moving pool width [µm]", _um("melt_pool_width_moving_um")),
                               ("moving pool depth [µm]", _um("melt_pool_depth_moving_um")),
                               ("peak T [K]", _um("peak_metal_T_K"))]),
-    "slm-track": dict(terms={"surfaceTension", "marangoni"},
+    "slm-track": dict(terms={"surfaceTension", "marangoni"}, options={"--vapour-jet"},
                       columns=[("track width [µm]", _um("track_width_m", 1e6)),
                                ("track depth [µm]", _um("track_depth_m", 1e6)),
                                ("bead height [µm]", _um("bead_height_m", 1e6))]),
@@ -62,23 +66,27 @@ SCENES = {
 
 
 def rows_of(scene):
+    """(key, label, terms off, build options) of SCENE's rows"""
     have = SCENES[scene]["terms"]
     out, seen = [], set()
     for key, label, off in ROWS:
         off = {k: v for k, v in off.items() if k in have}
         if (off or key == "all") and frozenset(off) not in seen:
             seen.add(frozenset(off))
-            out.append((key, label, off))
+            out.append((key, label, off, []))
+    for key, label, option in ON_ROWS:
+        if option in SCENES[scene].get("options", ()):
+            out.append((key, label, {}, [option]))
     return out
 
 
 def one(scene, key, work):
-    """Build SCENE's CI case, switch KEY's terms off, run it and analyse it; WORK/SCENE/KEY/summary.json
-    gets the wall time and fluid steps too."""
-    off = dict((k, o) for k, _, o in rows_of(scene))[key]
+    """Build SCENE's CI case (with KEY's build options), switch KEY's terms off, run it and analyse it;
+    WORK/SCENE/KEY/summary.json gets the wall time and fluid steps too."""
+    off, options = dict((k, (o, b)) for k, _, o, b in rows_of(scene))[key]
     script = os.path.join(SRC, "examples", scene, "scene.py")
     case = os.path.join(work, scene, key)
-    subprocess.run(["/usr/bin/python3", script, "build", case, "--ci"], check=True)
+    subprocess.run(["/usr/bin/python3", script, "build", case, "--ci", *options], check=True)
     if off:
         fc.set_physics(case, **off)
     t0 = time.time()
@@ -93,7 +101,9 @@ def one(scene, key, work):
 def write(results, out):
     lines = ["# Physics terms: cost and effect per scene", "",
              "`bench/scene_terms.py`: each scene's CI variant, one rank per run (two runs at a time on the "
-             "2-core machine), the terms switched off in the built case's physics{}; CPU = the solver's "
+             "2-core machine), the terms switched off in the built case's physics{} (or on by the scene's build "
+             "option, where the row names one: `--vapour-jet` is evaporation's mass loss and vapour jet, and in "
+             "slm-track evaporation and recoil with them); CPU = the solver's "
              "ExecutionTime (LAMMPS included), relative to the scene's default run. The fluid step of these "
              "scenes is set by their build (DEM sub-cycles, Courant number, the capillary limit of the built "
              "cells) and the same in every row, so a row's CPU is the terms' cost per step; where the "
@@ -153,7 +163,7 @@ def main(argv=None):
     if not a.from_results:
         running = []
         for scene in scenes:
-            for key, _, _ in rows_of(scene):
+            for key, _, _, _ in rows_of(scene):
                 case = os.path.join(a.work, scene, key)
                 if a.keep_done and os.path.exists(os.path.join(case, "summary.json")):
                     continue
@@ -171,7 +181,7 @@ def main(argv=None):
         results = {}
         for scene in scenes:
             rows = []
-            for key, label, _ in rows_of(scene):
+            for key, label, _, _ in rows_of(scene):
                 path = os.path.join(a.work, scene, key, "summary.json")
                 if os.path.exists(path) and "bench_cpu_s" in json.load(open(path)):
                     rows.append(dict(key=key, label=label, summary=json.load(open(path))))

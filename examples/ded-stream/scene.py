@@ -3,7 +3,7 @@
 particles fly at 10 m/s along a 45 degree axis into a laser melt pool on a 20 um substrate.
 Coupled meltdemFoam (substrate, melt pool, gas) + LAMMPS (the particles).
 
-    scene.py build CASE [--ci | --full] [--switch-off] [--dx DX] [--end T] [--refine L] ...
+    scene.py build CASE [--ci | --full] [--switch-off] [--dx DX] [--end T] [--refine L] [--vapour-jet] ...
     scene.py run CASE [--np N]
     scene.py analyse CASE
     scene.py all CASE [--ci | --full] [--switch-off] [--np N]
@@ -156,7 +156,7 @@ laser
     position     ({CX!r} {CY!r} {LZ - a.dx / 2!r});
     tOn          0;
 {t_off}}}
-{evaporation.steel_dict(M['cp'])}particles
+{evaporation.steel_dict(M['cp'], a.vapour_jet)}particles
 {{
     lammpsInput     in.particles;
     distribution    {a.distribution};
@@ -429,6 +429,7 @@ def main(argv=None):
                          "(0.25; full switch-off 0.02)")
     ap.add_argument("--no-recoil", dest="recoil", action="store_false")
     ap.add_argument("--no-evaporation", dest="evaporation", action="store_false")
+    ap.add_argument("--vapour-jet", action="store_true", help=evaporation.VAPOUR_JET_HELP)
     ap.add_argument("--np", type=int, default=1)
     ap.add_argument("--refine", type=int, default=0, metavar="L",
                     help="adaptive refinement: base cells 2^L x --dx, refined to --dx in the pool, under the beam "
@@ -437,6 +438,8 @@ def main(argv=None):
     laser.add_absorptivity_arguments(ap, ETA)
     a = ap.parse_args(argv)
     laser.check_absorptivity_arguments(ap, a, ETA)
+    if a.vapour_jet and not a.evaporation:
+        ap.error("--vapour-jet needs evaporation (drop --no-evaporation)")
     v = VARIANTS[a.variant or "ci"]
     a.dx = a.dx or v["dx"]
     a.end = a.end or (v["end_off"] if a.switch_off else v["end"])

@@ -6,7 +6,7 @@ meltdemFoam (melt pool, recoil, evaporation) hosting LAMMPS (the grains). The be
 case writer and analysis are shared with examples/pbf-point (pbf.py). See README.md.
 
     scene.py build CASE [--ci | --full] [--dx 10e-6] [--dist overlap] [--grains N] [--absorptivity ETA]
-                   [--dabsorptivity-dt PER_K [--absorptivity-min ETA] [--absorptivity-max ETA]]
+                   [--dabsorptivity-dt PER_K [--absorptivity-min ETA] [--absorptivity-max ETA]] [--vapour-jet]
     scene.py run CASE [--np N]
     scene.py analyse CASE          (prints the table, writes CASE/summary.json)
     scene.py all CASE [--ci | --full] [--np N]

@@ -5,7 +5,7 @@ on until 0.1 ms, off until 0.25 ms; meltdemFoam (melt pool, recoil, evaporation)
 LAMMPS (the grains). See README.md.
 
     scene.py build CASE [--ci | --full] [--dx 10e-6] [--dist overlap] [--grains N] [--absorptivity ETA]
-                   [--dabsorptivity-dt PER_K [--absorptivity-min ETA] [--absorptivity-max ETA]]
+                   [--dabsorptivity-dt PER_K [--absorptivity-min ETA] [--absorptivity-max ETA]] [--vapour-jet]
     scene.py run CASE [--np N]
     scene.py analyse CASE          (prints the table, writes CASE/summary.json)
     scene.py all CASE [--ci | --full] [--np N]
