@@ -38,7 +38,8 @@ def build(case, variant, **opts):
     v = dict(VARIANTS[variant])
     v.update({name: str(opts[k]) for k, name in OPTIONS.items() if opts.get(k) is not None})
     write_case(case, "powder-spread", variant, os.path.join(HERE, "in.powder-spread"), v)
-    shutil.copy(os.path.join(HERE, "in.powder-spread-layer"), case)     # included once per layer > 1
+    for part in ("in.powder-spread-stroke", "in.powder-spread-layer"):   # the stroke; once per layer > 1
+        shutil.copy(os.path.join(HERE, part), case)
 
 
 def run(case, np_=1):
