@@ -218,6 +218,19 @@ def track(log):
     return np.array(sorted(set(rows)))
 
 
+def check_evaporation_booked(test, case, ledger_bound):
+    """The metal evaporated in a coupled run (particleBalance's evaporatedMass_cum) against 1e-7 of the
+    continuum's metal at the start, so that a ledger holding ledger_bound sees it if it went unbooked;
+    returns (ok, evaporated, metal at the start)."""
+    from meltdem.testing.report import check_at_least
+    bal = np.genfromtxt(os.path.join(case, "postProcessing", "particleBalance", "0", "balance.csv"),
+                        delimiter=",", names=True)
+    evaporated, metal = float(bal["evaporatedMass_cum"][-1]), float(bal["metalMass"][0])
+    ok = check_at_least(test, f"metal evaporated and booked [kg] (> 1e-7 of the continuum's metal, so the "
+                        f"ledger's {ledger_bound:g} sees it)", evaporated, 1e-7 * metal)
+    return ok, evaporated, metal
+
+
 def check_balances(test, ledger_rows, mass=1e-13, energy=1e-6, momentum=None, xfail=None, momentum_xfail=None):
     """The worst per-step continuum errors of a ledger (Codina2019 eq. 2.20, 2.26, 2.36) against
     their bounds (momentum only when given); returns whether all held."""
