@@ -16,7 +16,6 @@ merged. Case 2: the gas out of the top in the first step against (1/rho_g - 1/rh
 as on the uniform mesh (the surface on faces of the finest cells).
 usage: amr_evaporation.py [--keep]
 """
-import glob
 import os
 import sys
 import tempfile
@@ -53,23 +52,6 @@ def evaporation_dict(tboil, jet=False):
             f"Th0 663.731; CM {ML.CM!r}; massLoss on;{' vapourJet on;' if jet else ''} }}\n")
 
 
-def remap_ledger(case, label):
-    """The refinement ledger's conservation checks; returns (ok, cells split, cells merged)."""
-    ref = np.atleast_1d(np.genfromtxt(glob.glob(os.path.join(case, "postProcessing", "refinement", "*",
-                                                             "refinement.csv"))[0], delimiter=",", names=True))
-    split = int(np.sum(ref["cellsAfter"] > ref["cellsBefore"]))
-    merged = int(np.sum(ref["cellsAfter"] < ref["cellsBefore"]))
-    print(f"{label}: {len(ref)} mesh changes, cells {int(ref['cellsBefore'][0])} -> {int(ref['cellsAfter'][-1])}, "
-          f"most {int(np.max(ref['cellsAfter']))}; {split} with more cells, {merged} with fewer")
-    ok = check_at_most(TEST, f"{label}: metal change across each of {len(ref)} mesh changes, max |after/before - 1|",
-                       float(np.max(np.abs(ref["metalAfter"] / ref["metalBefore"] - 1))), 1e-12)
-    ok &= check_at_most(TEST, f"{label}: enthalpy change across each mesh change, max |after/before - 1|",
-                        float(np.max(np.abs(ref["enthalpyAfter"] / ref["enthalpyBefore"] - 1))), 1e-12)
-    ok &= check_at_most(TEST, f"{label}: cells whose T left the range of the cells they came from",
-                        int(np.sum(ref["TOutsideRange"])), 0)
-    return ok, split, merged
-
-
 def balances(case, label):
     """meltdemBalance's mass and enthalpy errors with the evaporated metal booked; returns (ok, rows)."""
     bal = np.genfromtxt(os.path.join(case, "postProcessing", "balance", "0", "balance.csv"),
@@ -94,7 +76,7 @@ def dam_break(work):
     ok = check_at_most(TEST, "dam break: solver exit code", rc, 0)
     if rc != 0:
         return ok
-    good, split, merged = remap_ledger(case, "dam break")
+    good, split, merged = AMR.remap_checks(TEST, case, "dam break")
     ok &= good
     ok &= report(TEST, "dam break: mesh changes that split cells (> 0)", split, "> 0", "bound", split > 0)
     ok &= report(TEST, "dam break: mesh changes that merged cells (> 0)", merged, "> 0", "bound", merged > 0)
@@ -109,7 +91,7 @@ def vapour_jet(work):
     ok, bal = ML.run(case, TEST)
     if bal is None:
         return ok
-    good, split, _ = remap_ledger(case, "vapour jet")
+    good, split, _ = AMR.remap_checks(TEST, case, "vapour jet")
     ok &= good
     ok &= report(TEST, "vapour jet: mesh changes that split cells (> 0)", split, "> 0", "bound", split > 0)
     ok &= balances(case, "vapour jet")[0]
