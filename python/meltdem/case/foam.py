@@ -487,6 +487,14 @@ def execution_time(case, log="log.meltdemFoam"):
     return float(cpu[-1]) if cpu else None
 
 
+def temperature_range(case, log="log.solver"):
+    """The coldest and hottest cell over a meltdemFoam run: the extremes of its log's 'T min/max'
+    lines [K]."""
+    import re
+    pairs = re.findall(r"T min/max = (\S+), (\S+)", open(os.path.join(case, log)).read())
+    return min(float(a) for a, _ in pairs), max(float(b) for _, b in pairs)
+
+
 def reconstruct_commands(case, fields=None):
     """[(command, log)] that reconstruct the decomposed times the case folder lacks: where the mesh
     changed (adaptive refinement writes processorN/<time>/polyMesh) reconstructParMesh first, which

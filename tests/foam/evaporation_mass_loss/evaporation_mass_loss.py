@@ -15,7 +15,6 @@ Checks:
 usage: evaporation_mass_loss.py [--keep]
 """
 import os
-import re
 import sys
 import tempfile
 
@@ -106,9 +105,7 @@ def main():
     ok &= check_at_most(TEST, "momentum balance error at t_end / exchanged impulse",
                         float(bal["momentumErrorRel"][-1]), 0.01)
 
-    log = open(os.path.join(case, "log.solver")).read()
-    tmax = max(float(x) for x in re.findall(r"T min/max = \S+, (\S+)", log))
-    tmin = min(float(x) for x in re.findall(r"T min/max = (\S+),", log))
+    tmin, tmax = fc.temperature_range(case)
     print(f"T over the run: {tmin:.6g} .. {tmax:.10g} K")
     ok &= check_at_most(TEST, "hottest cell over the run above T0 [K] (the pool only cools)", tmax - T0, 1e-6)
     heat = float(bal["evaporationEnergy_cum"][-1])

@@ -33,6 +33,7 @@ src = paths.source_dir()
 TEST = "foam.mass_drift"
 RHO_M, RHO_G = 7430.0, 7.43
 TS, TL = 1700.0, 1710.0
+T_COLUMN, T_FLOOR = 2000.0, 1600.0
 T_END = 0.03
 
 
@@ -47,7 +48,7 @@ def build(case, n=40, alpha_tol="1e-14", nz=1, t_end=T_END, extra_properties="",
     floor = g.y < 1e-3
     column = (g.x < 1e-3) & (g.y > 1e-3) & (g.y < 3e-3)
     alpha = np.tile(np.where(floor | column, 1.0, 0.0), nz)
-    T = np.tile(np.where(column, 2000.0, 1600.0), nz)
+    T = np.tile(np.where(column, T_COLUMN, T_FLOOR), nz)
     zg = "type zeroGradient;"
     fc.field(case, "alpha.metal", "[0 0 0 0 0 0 0]", alpha, {"walls": zg, "floor": zg})
     fc.field(case, "T", "[0 0 0 1 0 0 0]", T,
