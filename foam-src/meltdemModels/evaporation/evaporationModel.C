@@ -244,6 +244,9 @@ Foam::meltdem::evaporationModel::vapourVolumeRate
         zeroGradientFvPatchScalarField::typeName
     );
     spread.primitiveFieldRef() = expansion*metalLossRate.primitiveField();
+    // (the laplacian's non-orthogonal correction on a refined mesh takes the gradient of
+    // this start value: its processor patches must hold the neighbours' cells, as in serial)
+    spread.correctBoundaryConditions();
     const scalarField& V = mesh_.V().field();
     const scalar total = gSum(spread.primitiveField()*V);
     if (total <= 0)
