@@ -203,19 +203,44 @@ Foam::scalar Foam::meltdem::surfaceForces::capillaryDeltaT
     const labelUList& own = mesh_.owner();
     const labelUList& nei = mesh_.neighbour();
     const vectorField& C = mesh_.C();
-    const auto crossed = [&](const label celli)
+    const auto crossed = [](const scalar a)
     {
-        return alpha[celli] > 0.01 && alpha[celli] < 0.99;
+        return a > 0.01 && a < 0.99;
     };
     scalar dt2 = GREAT;
+    // the face of cells at distance h with temperatures Ta, Tb, where either is crossed
+    const auto face = [&](const scalar h, const scalar Ta, const scalar Tb)
+    {
+        const scalar s = max(sigma(Ta), sigma(Tb));
+        dt2 = min(dt2, rhoMean*h*h*h/(constant::mathematical::twoPi*s));
+    };
     forAll(nei, facei)
     {
         const label a = own[facei], b = nei[facei];
-        if (crossed(a) || crossed(b))
+        if (crossed(alpha[a]) || crossed(alpha[b]))
         {
-            const scalar h = mag(C[b] - C[a]);
-            const scalar s = max(sigma(T[a]), sigma(T[b]));
-            dt2 = min(dt2, rhoMean*h*h*h/(constant::mathematical::twoPi*s));
+            face(mag(C[b] - C[a]), T[a], T[b]);
+        }
+    }
+    // processor (and cyclic) faces as the internal faces they are in serial: the
+    // neighbours' cells from the coupled patches
+    forAll(alpha.boundaryField(), patchi)
+    {
+        const fvPatchScalarField& alphap = alpha.boundaryField()[patchi];
+        if (!alphap.coupled())
+        {
+            continue;
+        }
+        const scalarField alphaN(alphap.patchNeighbourField());
+        const scalarField TN(T.boundaryField()[patchi].patchNeighbourField());
+        const vectorField delta(alphap.patch().delta());
+        const labelUList& cells = alphap.patch().faceCells();
+        forAll(cells, i)
+        {
+            if (crossed(alpha[cells[i]]) || crossed(alphaN[i]))
+            {
+                face(mag(delta[i]), T[cells[i]], TN[i]);
+            }
         }
     }
     reduce(dt2, minOp<scalar>());
