@@ -104,8 +104,8 @@ def vapour_jet_parallel(work, bal):
         return False
     bal2 = np.genfromtxt(os.path.join(par, "postProcessing", "balance", "0", "balance.csv"), delimiter=",",
                          names=True)
-    # (the vapour's spread once took its start field's gradient with stale processor values: 1e-8;
-    # the flux through the top carries the pressure solver's tolerance, 1e-9, as on the uniform mesh)
+    # (the spread's smoothing sees the neighbours' cells across the processor faces as in serial; the
+    # flux through the top carries the pressure solver's tolerance, 1e-9, as on the uniform mesh)
     for col, what, tol in (("evaporatedMass_cum", "evaporated mass", 1e-10),
                            ("enthalpyAdvIn_atmosphere", "heat carried out by the jet, last step", 1e-8)):
         ok &= check_relative(TEST, f"vapour jet: np 2 vs serial, {what}", float(bal2[col][-1]),
