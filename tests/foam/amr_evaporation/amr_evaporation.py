@@ -97,20 +97,9 @@ def vapour_jet_parallel(work, bal):
     """The refining jet pool on 2 ranks, split across the pool, against the serial run's balance rows."""
     par = os.path.join(work, "pool-np2")
     build_vapour_jet(par)
-    fc.decompose(par, 2, direction=(2, 1, 1))
-    rc = fc.run_solver(par, np_=2, log="log.solver", check=False)
-    ok = check_at_most(TEST, "vapour jet, np 2: solver exit code", rc, 0)
-    if rc != 0:
-        return False
-    bal2 = np.genfromtxt(os.path.join(par, "postProcessing", "balance", "0", "balance.csv"), delimiter=",",
-                         names=True)
     # (the spread's smoothing sees the neighbours' cells across the processor faces as in serial; the
     # flux through the top carries the pressure solver's tolerance, 1e-9, as on the uniform mesh)
-    for col, what, tol in (("evaporatedMass_cum", "evaporated mass", 1e-10),
-                           ("enthalpyAdvIn_atmosphere", "heat carried out by the jet, last step", 1e-8)):
-        ok &= check_relative(TEST, f"vapour jet: np 2 vs serial, {what}", float(bal2[col][-1]),
-                             float(bal[col][-1]), tol)
-    return ok
+    return JET.np2_against_serial(TEST, par, bal, (1e-10, 1e-8), label="vapour jet: ")
 
 
 def vapour_jet(work):
