@@ -162,9 +162,9 @@ void Foam::meltdem::particleLedgerOutput::book
                 -b.evaporatedMass, b.laserE - b.evapE - b.evaporatedEnthalpy,
                 Eigen::Vector3d
                 (
-                    b.gravityImpulse.x() - b.evaporatedMomentum.x(),
-                    b.gravityImpulse.y() - b.evaporatedMomentum.y(),
-                    b.gravityImpulse.z() - b.evaporatedMomentum.z()
+                    b.gravityImpulse.x() + b.physicsForceImpulse.x() - b.evaporatedMomentum.x(),
+                    b.gravityImpulse.y() + b.physicsForceImpulse.y() - b.evaporatedMomentum.y(),
+                    b.gravityImpulse.z() + b.physicsForceImpulse.z() - b.evaporatedMomentum.z()
                 )
             )
         );

@@ -236,6 +236,8 @@ int main(int argc, char *argv[])
             }
         }
 
+        #include "physicsForce.H"
+
         const bool writeOk = runTime.write();
         if (refinement.valid() && runTime.writeTime())
         {

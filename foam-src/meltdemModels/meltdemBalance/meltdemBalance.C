@@ -178,6 +178,7 @@ void Foam::functionObjects::meltdemBalance::start()
     laser_ = energy_ && foundObject<volScalarField>(laserName_);
     evap_ = energy_ && foundObject<volScalarField>(evapName_);
     evapMass_ = foundObject<volScalarField::Internal>("evaporatedMassRate");
+    physicsForce_ = momentum_ && foundObject<volVectorField::Internal>("physicsForce");
 
     scalar M, H;
     vector P;
@@ -264,6 +265,7 @@ void Foam::functionObjects::meltdemBalance::start()
         if (energy_) os << ",evaporatedEnthalpy_cum";
         if (momentum_) for (int c = 0; c < 3; ++c) os << ",evaporatedMomentum_cum" << xyz[c];
     }
+    if (physicsForce_) for (int c = 0; c < 3; ++c) os << ",physicsForceImpulse_cum" << xyz[c];
     os << nl;
 
     // the start state as first row, flows zero (a resumed run: its errors so far)
@@ -291,7 +293,7 @@ void Foam::functionObjects::meltdemBalance::saveState() const
         gravityImp_.y(), gravityImp_.z(), momentumAbs_, exchangeMass_, exchangeEnthalpy_,
         exchangeMomentum_.x(), exchangeMomentum_.y(), exchangeMomentum_.z(),
         evaporatedMass_, evaporatedEnthalpy_, evaporatedMomentum_.x(), evaporatedMomentum_.y(),
-        evaporatedMomentum_.z()
+        evaporatedMomentum_.z(), physicsForceImp_.x(), physicsForceImp_.y(), physicsForceImp_.z()
     };
     List<string> values(label(sizeof scalars/sizeof scalars[0]));
     forAll(values, i) values[i] = meltdem::exactScalar(scalars[i]);
@@ -316,11 +318,11 @@ bool Foam::functionObjects::meltdemBalance::restoreState()
     );
     if (!state.found("integrals")) return false;
     const List<string> values(state.get<List<string>>("integrals"));
-    // (22: written before evaporation's mass loss was booked)
-    if (values.size() != 22 && values.size() != 27)
+    // (22: written before evaporation's mass loss was booked, 27: before the physics force)
+    if (values.size() != 22 && values.size() != 27 && values.size() != 30)
     {
         FatalIOErrorInFunction(state)
-            << "integrals: 27 (or 22) values expected, found " << values.size()
+            << "integrals: 30 (or 27, 22) values expected, found " << values.size()
             << exit(FatalIOError);
     }
     scalarList v(values.size());
@@ -331,10 +333,14 @@ bool Foam::functionObjects::meltdemBalance::restoreState()
     gravityImp_ = vector(v[13], v[14], v[15]); momentumAbs_ = v[16];
     exchangeMass_ = v[17]; exchangeEnthalpy_ = v[18];
     exchangeMomentum_ = vector(v[19], v[20], v[21]);
-    if (v.size() == 27)
+    if (v.size() >= 27)
     {
         evaporatedMass_ = v[22]; evaporatedEnthalpy_ = v[23];
         evaporatedMomentum_ = vector(v[24], v[25], v[26]);
+    }
+    if (v.size() == 30)
+    {
+        physicsForceImp_ = vector(v[27], v[28], v[29]);
     }
     if (log)
     {
@@ -372,7 +378,9 @@ Foam::functionObjects::meltdemBalance::errors
     e.H = (H - H0_) - enthalpyIn_ - laserE_ + evapE_ - exchangeEnthalpy_ + evaporatedEnthalpy_;
     e.HRel = e.H/max(mag(H0_), VSMALL);
     e.HRelExchanged = exchangedRel(e.H, max(mag(H - H0_), enthalpyAbs_));
-    e.P = (P - P0_) - momentumIn_ - gravityImp_ - exchangeMomentum_ + evaporatedMomentum_;
+    e.P =
+        (P - P0_) - momentumIn_ - gravityImp_ - exchangeMomentum_ + evaporatedMomentum_
+      - physicsForceImp_;
     e.PRel = exchangedRel(mag(e.P), max(mag(P - P0_), momentumAbs_));
     return e;
 }
@@ -470,6 +478,7 @@ void Foam::functionObjects::meltdemBalance::writeRow
         if (energy_) os << ',' << evaporatedEnthalpy_;
         if (momentum_) for (direction c = 0; c < 3; ++c) os << ',' << evaporatedMomentum_[c];
     }
+    if (physicsForce_) for (direction c = 0; c < 3; ++c) os << ',' << physicsForceImp_[c];
     os << endl;
 }
 
@@ -488,13 +497,15 @@ Foam::functionObjects::meltdemBalance::meltdemBalance
     hasThermo_(false),
     cpM_(0), cpG_(0), kM_(0), kG_(0), L_(0), Ts_(0), Tl_(0),
     energy_(false), momentum_(false), laser_(false), evap_(false), evapMass_(false),
+    physicsForce_(false),
     started_(false),
     M0_(0), H0_(0), P0_(Zero),
     massIn_(0), enthalpyIn_(0), laserE_(0), evapE_(0), enthalpyAbs_(0),
     momentumIn_(Zero), gravityImp_(Zero), momentumAbs_(0),
     lastIndex_(-1),
     exchangeMass_(0), exchangeEnthalpy_(0), exchangeMomentum_(Zero),
-    evaporatedMass_(0), evaporatedEnthalpy_(0), evaporatedMomentum_(Zero)
+    evaporatedMass_(0), evaporatedEnthalpy_(0), evaporatedMomentum_(Zero),
+    physicsForceImp_(Zero)
 {
     readProperties();
     read(dict);
@@ -722,6 +733,15 @@ bool Foam::functionObjects::meltdemBalance::execute()
         }
     }
     evaporatedMass_ += evMass;
+
+    // the solver's physics terms and surface force (meltdemFoam's physicsForce)
+    vector forceP(Zero);
+    if (physicsForce_)
+    {
+        forceP = dt*gSum(lookupObject<volVectorField::Internal>("physicsForce").field()*V);
+    }
+    physicsForceImp_ += forceP;
+    momentumAbs_ += mag(forceP);
     evaporatedEnthalpy_ += evH;
     evaporatedMomentum_ += evP;
     enthalpyAbs_ += mag(evH);
@@ -743,6 +763,7 @@ bool Foam::functionObjects::meltdemBalance::execute()
     last_.evaporatedMass = evMass;
     last_.evaporatedEnthalpy = evH;
     last_.evaporatedMomentum = evP;
+    last_.physicsForceImpulse = forceP;
 
     massIn_ += dt*massStep;
     enthalpyIn_ += dt*enthalpyStep;
