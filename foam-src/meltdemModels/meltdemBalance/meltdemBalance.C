@@ -733,6 +733,10 @@ bool Foam::functionObjects::meltdemBalance::execute()
         }
     }
     evaporatedMass_ += evMass;
+    evaporatedEnthalpy_ += evH;
+    evaporatedMomentum_ += evP;
+    enthalpyAbs_ += mag(evH);
+    momentumAbs_ += mag(evP);
 
     // the solver's physics terms and surface force (meltdemFoam's physicsForce)
     vector forceP(Zero);
@@ -742,10 +746,6 @@ bool Foam::functionObjects::meltdemBalance::execute()
     }
     physicsForceImp_ += forceP;
     momentumAbs_ += mag(forceP);
-    evaporatedEnthalpy_ += evH;
-    evaporatedMomentum_ += evP;
-    enthalpyAbs_ += mag(evH);
-    momentumAbs_ += mag(evP);
 
     last_.M = M;
     last_.H = H;
