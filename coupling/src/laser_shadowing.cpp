@@ -121,6 +121,14 @@ double beam_power_in_disk(const GaussianBeam &beam, double R, double s)
 ShadowResult shade_particles(const GaussianBeam &beam, const std::vector<BeamParticle> &particles,
                              const ShadowOptions &options)
 {
+  ShadowResult res;
+  shade_particles(beam, particles, options, res);
+  return res;
+}
+
+void shade_particles(const GaussianBeam &beam, const std::vector<BeamParticle> &particles, const ShadowOptions &options,
+                     ShadowResult &res)
+{
   check_beam(beam);
   if (!(options.cells_per_radius > 0.0) || !std::isfinite(options.cells_per_radius))
     bad("cells_per_radius = " + str(options.cells_per_radius) + " must be finite and > 0");
@@ -137,7 +145,6 @@ ShadowResult shade_particles(const GaussianBeam &beam, const std::vector<BeamPar
     bad("cells_per_particle_radius = " + str(options.cells_per_particle_radius) + " must be finite and >= 0");
   if (!(options.max_cells >= 4)) bad("max_cells = " + std::to_string(options.max_cells) + " must be >= 4");
 
-  ShadowResult res;
   ShadowGrid &g = res.grid;
   const double w = beam.radius, P = beam.power, eta = beam.absorptivity;
   g.centre = beam.centre;
@@ -187,7 +194,7 @@ ShadowResult shade_particles(const GaussianBeam &beam, const std::vector<BeamPar
   g.block_entry_depth.assign(static_cast<std::size_t>(g.nb) * g.nb, std::numeric_limits<double>::infinity());
 
   // z-buffer: each ray keeps the sphere it enters first
-  const double inv_h = 1.0 / g.h;
+  const double inv_h = 1.0 / g.h, inf = std::numeric_limits<double>::infinity();
   for (std::size_t k = 0; k < particles.size(); ++k) {
     const Eigen::Vector3d p = particles[k].x - g.centre;
     const double depth = p.dot(g.direction), pu = p.dot(g.u), pv = p.dot(g.v);
@@ -208,13 +215,15 @@ ShadowResult shade_particles(const GaussianBeam &beam, const std::vector<BeamPar
       // each block's smallest entry: the smallest value ever written to it (entries only fall)
       double *blocks = g.block_entry_depth.data() + static_cast<std::size_t>(j / kShadowBlock) * g.nb;
       int block = i0 / kShadowBlock;
-      double block_min = std::numeric_limits<double>::infinity();
+      double block_min = inf;
       for (int i = i0; i <= i1; ++i) {
         if (i / kShadowBlock != block) {
           blocks[block] = std::min(blocks[block], block_min);
           block = i / kShadowBlock;
-          block_min = std::numeric_limits<double>::infinity();
+          block_min = inf;
         }
+        // (the sphere enters no ray before depth - R: a ray hit there or above keeps its entry)
+        if (!(g.entry_depth[row + i] > depth - R)) continue;
         const double du = (i + 0.5 - m) * g.h - pu;
         const double r2 = du * du + dv * dv;
         if (!(r2 < R2)) continue;
@@ -231,9 +240,18 @@ ShadowResult shade_particles(const GaussianBeam &beam, const std::vector<BeamPar
 
   // each row's runs of rays with one owner are summed before they are booked: consecutive
   // rays mostly share their particle, and a sum into memory per ray waits on the last one
+  // (the same pass takes each block's largest entry depth)
   res.intercepted.assign(particles.size(), 0.0);
+  g.block_max_entry_depth.assign(static_cast<std::size_t>(g.nb) * g.nb, -std::numeric_limits<double>::infinity());
   for (int j = 0; j < n; ++j) {
     const int *owner = g.owner.data() + static_cast<std::size_t>(j) * n;
+    const double *entry = g.entry_depth.data() + static_cast<std::size_t>(j) * n;
+    double *block_max = g.block_max_entry_depth.data() + static_cast<std::size_t>(j / kShadowBlock) * g.nb;
+    for (int i0 = 0; i0 < n; i0 += kShadowBlock) {
+      double largest = block_max[i0 / kShadowBlock];
+      for (int i = i0; i < std::min(n, i0 + kShadowBlock); ++i) largest = std::max(largest, entry[i]);
+      block_max[i0 / kShadowBlock] = largest;
+    }
     for (int i = 0; i < n;) {
       const int o = owner[i];
       double run = 0.0;
@@ -256,11 +274,18 @@ ShadowResult shade_particles(const GaussianBeam &beam, const std::vector<BeamPar
   res.tail_power = P - res.sampled_power;
   res.power = P;
   res.absorptivity = eta;
-  return res;
 }
 
 ShadowResult shade_particles(MPI_Comm comm, const GaussianBeam &beam, const std::vector<BeamParticle> &local,
                              const ShadowOptions &options)
+{
+  ShadowResult global;
+  shade_particles(comm, beam, local, options, global);
+  return global;
+}
+
+void shade_particles(MPI_Comm comm, const GaussianBeam &beam, const std::vector<BeamParticle> &local,
+                     const ShadowOptions &options, ShadowResult &global)
 {
   check_beam(beam);  // the same beam everywhere: every rank throws alike
   // check the local particles first, and agree on the outcome, so that no rank is left
@@ -303,7 +328,7 @@ ShadowResult shade_particles(MPI_Comm comm, const GaussianBeam &beam, const std:
   for (std::size_t k = 0; k < gathered.size(); ++k)
     gathered[k] = {Eigen::Vector3d(all[4 * k], all[4 * k + 1], all[4 * k + 2]), all[4 * k + 3]};
 
-  ShadowResult global = shade_particles(beam, gathered, options);
+  shade_particles(beam, gathered, options, global);
   // back to the caller's particles
   std::vector<double> absorbed(local.size(), 0.0), intercepted(local.size(), 0.0);
   const std::size_t first = offsets[rank] / 4;
@@ -313,7 +338,6 @@ ShadowResult shade_particles(MPI_Comm comm, const GaussianBeam &beam, const std:
   }
   global.absorbed = std::move(absorbed);
   global.intercepted = std::move(intercepted);
-  return global;
 }
 
 double transmitted_fraction(const ShadowResult &result, const Eigen::Vector3d &point, double footprint)
@@ -326,7 +350,8 @@ double transmitted_fraction(const ShadowResult &result, const Eigen::Vector3d &p
   const Eigen::Vector3d p = point - g.centre;
   const double depth = p.dot(g.direction), pu = p.dot(g.u), pv = p.dot(g.v);
   const double m = g.n / 2, inv_h = 1.0 / g.h;
-  const bool blocks = g.nb > 0 && g.block_entry_depth.size() == static_cast<std::size_t>(g.nb) * g.nb;
+  const bool blocks = g.nb > 0 && g.block_entry_depth.size() == static_cast<std::size_t>(g.nb) * g.nb &&
+                      g.block_max_entry_depth.size() == g.block_entry_depth.size();
   // lattice index of a ray; those outside the grid carry no particle: lit
   auto lit_at = [&](double fi, double fj) {
     if (fi < 0 || fj < 0 || fi >= g.n || fj >= g.n) return true;
@@ -382,12 +407,18 @@ double transmitted_fraction(const ShadowResult &result, const Eigen::Vector3d &p
       const double hi_d = std::min(b, g.n - 1.0);
       if (hi_d < static_cast<double>(lo)) continue;
       const std::size_t hi = static_cast<std::size_t>(hi_d);
-      const double *bmin =
-          blocks ? g.block_entry_depth.data() + static_cast<std::size_t>(fj) / kShadowBlock * g.nb : nullptr;
+      const std::size_t block_row = static_cast<std::size_t>(fj) / kShadowBlock * g.nb;
+      const double *bmin = blocks ? g.block_entry_depth.data() + block_row : nullptr;
+      const double *bmax = blocks ? g.block_max_entry_depth.data() + block_row : nullptr;
       for (std::size_t i = lo; i <= hi;) {
         const std::size_t end = std::min(hi, (i / kShadowBlock + 1) * kShadowBlock - 1);
-        if (!(bmin && depth < bmin[i / kShadowBlock]))
+        if (bmin && depth < bmin[i / kShadowBlock]) {
+          // every ray of the block lit at this depth
+        } else if (bmax && !(depth < bmax[i / kShadowBlock])) {
+          dark += static_cast<long>(end - i + 1);  // every ray of the block dark
+        } else {
           for (std::size_t k = i; k <= end; ++k) dark += depth < g.entry_depth[row + k] ? 0 : 1;
+        }
         i = end + 1;
       }
     }

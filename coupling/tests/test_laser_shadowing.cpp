@@ -403,16 +403,23 @@ TEST(LaserShadowing, FootprintFractionEqualsRayCount)
   const ShadowResult r = shade_particles(b, ps, opt);
   const ShadowGrid &g = r.grid;
   ASSERT_EQ(g.nb, (g.n + kShadowBlock - 1) / kShadowBlock);
-  int wrong_blocks = 0;
+  ASSERT_EQ(g.block_max_entry_depth.size(), g.block_entry_depth.size());
+  int wrong_blocks = 0, wrong_max = 0, covered = 0;
   for (int bj = 0; bj < g.nb; ++bj)
     for (int bi = 0; bi < g.nb; ++bi) {
-      double lowest = std::numeric_limits<double>::infinity();
+      double lowest = std::numeric_limits<double>::infinity(), largest = -lowest;
       for (int j = bj * kShadowBlock; j < std::min(g.n, (bj + 1) * kShadowBlock); ++j)
-        for (int i = bi * kShadowBlock; i < std::min(g.n, (bi + 1) * kShadowBlock); ++i)
+        for (int i = bi * kShadowBlock; i < std::min(g.n, (bi + 1) * kShadowBlock); ++i) {
           lowest = std::min(lowest, g.entry_depth[std::size_t(j) * g.n + i]);
+          largest = std::max(largest, g.entry_depth[std::size_t(j) * g.n + i]);
+        }
       wrong_blocks += g.block_entry_depth[std::size_t(bj) * g.nb + bi] == lowest ? 0 : 1;
+      wrong_max += g.block_max_entry_depth[std::size_t(bj) * g.nb + bi] == largest ? 0 : 1;
+      covered += std::isfinite(largest) ? 1 : 0;
     }
   EXPECT_EQ(wrong_blocks, 0) << "blocks whose smallest entry depth is not their rays' smallest";
+  EXPECT_EQ(wrong_max, 0) << "blocks whose largest entry depth is not their rays' largest";
+  EXPECT_GT(covered, 0) << "no block wholly in shadow: the dark-block path is not exercised";
   std::uniform_real_distribution<double> where(-5.0 * w, 5.0 * w), height(-0.8 * w, 1.0 * w);
   int checked = 0, differ = 0, partial = 0;
   double t_fast = 0.0, t_rays = 0.0;
@@ -457,9 +464,15 @@ TEST(LaserShadowing, CostPerParticle)
     double total = 0.0;
     for (int k = 0; k < reps; ++k) total += shade_particles(b, ps, opt).intercepted_total;
     const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() / reps;
+    ShadowResult reused;
+    const auto t1 = std::chrono::steady_clock::now();
+    for (int k = 0; k < reps; ++k) shade_particles(b, ps, opt, reused);
+    const double s_reused = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count() / reps;
+    EXPECT_EQ(reused.intercepted_total, shade_particles(b, ps, opt).intercepted_total);
     const ShadowGrid grid = shade_particles(b, ps, opt).grid;
     std::cout << "COST 1000 particles (R = 0.15..0.4 w), cells_per_particle_radius " << cpr
               << ": 0.15 w / h = " << 0.15 * w / grid.h << " (" << grid.n << "^2 rays): " << s * 1e3 << " ms per call, "
-              << s / 1000 * 1e6 << " us per particle (intercepted " << total / reps << " W)\n";
+              << s / 1000 * 1e6 << " us per particle (intercepted " << total / reps << " W); " << s_reused * 1e3
+              << " ms with the storage kept\n";
   }
 }

@@ -173,7 +173,7 @@ void Foam::meltdem::particleSampling::shade
             solid.push_back(i);
         }
     }
-    shadow_ = mc::shade_particles(comm_, beam, local);
+    mc::shade_particles(comm_, beam, local, {}, shadow_);
 
     absorbed.assign(start.size(), 0.0);
     for (std::size_t k = 0; k < solid.size(); ++k)

@@ -90,6 +90,9 @@ struct ShadowGrid {
   // side; +inf where no ray is hit): a point above it is lit by every ray of the block
   int nb = 0;
   std::vector<double> block_entry_depth;
+  // the largest entry depth in each block (+inf where a ray of the block is not hit): a point
+  // at or below it is dark for every ray of the block
+  std::vector<double> block_max_entry_depth;
 };
 inline constexpr int kShadowBlock = 16;  // rays per block side
 
@@ -125,6 +128,10 @@ double beam_power_in_disk(const GaussianBeam &beam, double R, double s = 0.0);
 // centre, a particle with radius <= 0 or a non-finite centre, or bad options.
 ShadowResult shade_particles(const GaussianBeam &beam, const std::vector<BeamParticle> &particles,
                              const ShadowOptions &options = {});
+// The same into result, whose storage is kept: a caller casting every step allocates the ray
+// grid once
+void shade_particles(const GaussianBeam &beam, const std::vector<BeamParticle> &particles, const ShadowOptions &options,
+                     ShadowResult &result);
 
 // The same over MPI (collective on comm; the beam and options must be the same on every
 // rank): each rank passes its own particles; those whose disk reaches the sampled square
@@ -133,6 +140,8 @@ ShadowResult shade_particles(const GaussianBeam &beam, const std::vector<BeamPar
 // those outside the square). Bad particle input on any rank throws on every rank.
 ShadowResult shade_particles(MPI_Comm comm, const GaussianBeam &beam, const std::vector<BeamParticle> &local,
                              const ShadowOptions &options = {});
+void shade_particles(MPI_Comm comm, const GaussianBeam &beam, const std::vector<BeamParticle> &local,
+                     const ShadowOptions &options, ShadowResult &result);
 
 // Geometric fraction of the beam arriving at `point` (0 or 1): the ray through the point's
 // projection on the grid is lit at the point's depth if no particle intercepted it upstream
