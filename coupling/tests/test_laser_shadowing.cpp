@@ -445,6 +445,33 @@ TEST(LaserShadowing, FootprintFractionEqualsRayCount)
   EXPECT_GT(partial, 100);  // the comparison covers shadow edges, not only lit or dark points
 }
 
+// a result cast into again (other particles, another grid) equals a fresh cast, ray for ray
+TEST(LaserShadowing, ReusedResultEqualsFresh)
+{
+  const GaussianBeam b = test_beam(Eigen::Vector3d(0.1, 0.0, -1.0));
+  const double w = b.radius;
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> pos(-2.0 * w, 2.0 * w), rad(0.1 * w, 0.3 * w), up(0.0, w);
+  ShadowResult reused;
+  for (const double cpr : {20.0, 8.0, 12.0}) {
+    std::vector<BeamParticle> ps;
+    for (int k = 0; k < 200; ++k) ps.push_back({beam_point(b, up(rng), pos(rng), pos(rng)), rad(rng)});
+    ShadowOptions opt;
+    opt.cells_per_particle_radius = cpr;
+    shade_particles(b, ps, opt, reused);
+    const ShadowResult fresh = shade_particles(b, ps, opt);
+    ASSERT_EQ(reused.grid.n, fresh.grid.n);
+    EXPECT_EQ(reused.grid.entry_depth, fresh.grid.entry_depth) << "cells_per_particle_radius " << cpr;
+    EXPECT_EQ(reused.grid.owner, fresh.grid.owner);
+    EXPECT_EQ(reused.grid.block_entry_depth, fresh.grid.block_entry_depth);
+    EXPECT_EQ(reused.grid.block_max_entry_depth, fresh.grid.block_max_entry_depth);
+    EXPECT_EQ(reused.intercepted, fresh.intercepted);
+    EXPECT_EQ(reused.absorbed, fresh.absorbed);
+    EXPECT_EQ(reused.transmitted_power, fresh.transmitted_power);
+    EXPECT_EQ(reused.tail_power, fresh.tail_power);
+  }
+}
+
 // cost per particle for 1000 particles (printed, not asserted)
 TEST(LaserShadowing, CostPerParticle)
 {
