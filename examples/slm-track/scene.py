@@ -55,6 +55,7 @@ DEM_DT = 5e-9                                      # s: 1/10 of the Hertz time o
 VMAX_DEM = 10.0                                    # m/s: speed limit of the DEM integration (see in.particles)
 FLUID_DT = 5e-7                                    # s: fluid step (fixed, see README)
 SURFACE = True                                     # surface tension and Marangoni (see README)
+FINE_COURANT = 0.3                                 # the flow's step on cells finer than the variant's (README)
 G = 9.81                                            # the bed was poured at 10 g; the scan runs at 1 g
 
 VARIANTS = {
@@ -198,6 +199,10 @@ def build(case, variant, cell=None, bed=None, track=None, distribution="overlap"
     v["np"] = np_
     h_fine = v["cell"]
     h = h_fine * 2 ** refine                     # the base mesh (refined to h_fine where needed)
+    if courant is None and fluid_dt is None and surface and h_fine < VARIANTS[variant]["cell"]:
+        # the fixed step outruns the flow's Courant limit on finer cells once surface forces drive
+        # the pool (README): the flow's own step unless a step is given
+        courant = FINE_COURANT
     v["sub"] = max(h, round(v["sub"] / h) * h)   # substrate top (y = 0) on a cell face
     v["top"] = max(h, round(v["top"] / h) * h)
     n = (int(round(v["lx"] / h)), int(round((v["sub"] + v["top"]) / h)), int(round(v["lz"] / h)))
@@ -287,7 +292,9 @@ energyControls {{ nCorrectors 50; tolerance 1e-13; }}
     json.dump(meta, open(os.path.join(case, "scene.json"), "w"), indent=1)
     print(f"case {case}: {variant}, {n[0]}x{n[1]}x{n[2]} cells of {h * 1e6:g} um"
           f"{f' refined to {h_fine * 1e6:g} um' if refine else ''}, {nparticles} particles, "
-          f"track x {v['x0'] * 1e3:g}-{v['x1'] * 1e3:g} mm ({t_scan * 1e3:g} ms) + {v['cool'] * 1e6:g} us cooling")
+          f"track x {v['x0'] * 1e3:g}-{v['x1'] * 1e3:g} mm ({t_scan * 1e3:g} ms) + {v['cool'] * 1e6:g} us cooling, "
+          + (f"the flow's step (Courant <= {courant:g}, at most {n_sub * DEM_DT * 1e6:g} us)" if courant else
+             f"fixed fluid step {n_sub * DEM_DT * 1e6:g} us"))
 
 
 # -------------------------------------------------------------------------------------------- run
@@ -555,7 +562,7 @@ def main(argv=None):
     g.add_argument("--ci", action="store_true", help="0.3 x 0.3 mm floor, 0.2 mm track (default)")
     g.add_argument("--full", action="store_true", help="thesis size 0.9 x 0.21 x 0.9 mm, 0.7 mm track")
     ap.add_argument("--np", type=int, default=1)
-    ap.add_argument("--cell", type=float, help="cell size [m] (default 15e-6)")
+    ap.add_argument("--cell", type=float, help="cell size [m] (default the variant's: 30e-6)")
     ap.add_argument("--bed", help="powder-bed dump to use instead of pouring one, or 'spread': a layer spread "
                     "by examples/powder-spread's blade")
     ap.add_argument("--track", type=float, help="track length [m]")
@@ -565,7 +572,9 @@ def main(argv=None):
                     "largest)")
     ap.add_argument("--courant", type=float, metavar="CO",
                     help="adaptive fluid step: the largest with cell and interface Courant numbers <= CO (at most "
-                    "--fluid-dt), DEM sub-cycles recomputed every step (demStepsPerFluidStep auto)")
+                    "--fluid-dt), DEM sub-cycles recomputed every step (demStepsPerFluidStep auto); the default "
+                    f"on cells finer than the variant's with surface forces on ({FINE_COURANT:g}) unless --fluid-dt "
+                    "is given")
     ap.add_argument("--surface", dest="surface", action="store_true", default=SURFACE,
                     help="surface tension and Marangoni on (the default)")
     ap.add_argument("--no-surface", dest="surface", action="store_false",
