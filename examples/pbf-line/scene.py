@@ -22,7 +22,7 @@ point_scene = load_module(os.path.join(os.path.dirname(os.path.abspath(__file__)
 
 SCENE = Scene(name="pbf-line", kind="coupled",
               title="Powder bed fusion, line melting (Fuchs2022 §4.5, tables 1–3)",
-              ci_time="114 s wall", full_time="about 2.5 h on 2 cores",
+              ci_time="114 s wall", full_time="about 2.5 h on 2 cores; 21 min with --refine 1 (README)",
               build=lambda case, size: point_scene.main("line", __doc__, ["build", case, f"--{size}"]),
               analyse=lambda case: point_scene.main("line", __doc__, ["analyse", case]),
               summary=point_scene.pbf.summary)
