@@ -472,14 +472,13 @@ def analyse(case, quiet=False):
     dz = np.diff(g.zf)
     # metal column height above the original surface, h(x, y) = sum alpha dz - substrate
     h = np.einsum("kji,k->ji", alpha, dz) - PROCESS["substrate_thickness"]
-    # measured section: 1.25-1.75 mm behind the final beam position (2-2.8 sigma of the powder
-    # spot, sigma = w/2): >= 97.7 % of the powder that section gets has arrived, and the widest
-    # part of the pool has passed it (the fused zone there is the pool's envelope)
     sig = 0.25 * PROCESS["spot_diameter"] * meta.get("powder_spot", 1.0)
-    xa, xb = g.x_end - 2.8 * sig, g.x_end - 2.0 * sig
-    cols = np.where((xc >= xa) & (xc <= xb))[0]
-    if len(cols) == 0:           # coarse meshes: the cell column nearest to 2.4 sigma behind
-        cols = np.array([int(np.argmin(np.abs(xc - (g.x_end - 2.4 * sig))))])
+    liquid_last = np.zeros(nx)
+    if os.path.exists(os.path.join(case, last, "liquidFraction")):
+        f = read_field(last, "liquidFraction")
+        if f.size > 1:
+            liquid_last = f.reshape(nz, ny, nx).max(axis=(0, 1))
+    cols, section_kind = measured_section(xc, liquid_last, g.x_start, g.x_end, sig, meta["dx"])
     ksurf = np.searchsorted(zc, 0.0) - 1          # top row of substrate cells (centre below z = 0)
     rows = []
     for i in cols:
@@ -491,7 +490,11 @@ def analyse(case, quiet=False):
         # penetration: liquid fraction 0.5 crossing along -z in the column at y = 0
         col = fmax[:ksurf + 1, 0, i][::-1]          # from the surface down
         depth = profiles.first_fall(-zc[:ksurf + 1][::-1], col, 0.5)
-        rows.append((xc[i], width, height, depth))
+        # the deposit's cross-section (net metal volume per length, exact on any mesh) and its
+        # width where its top falls, outermost, to 10 % of its height
+        area = 2.0 * float(np.dot(prof, np.diff(g.yf)))
+        top_width = 2.0 * outer_crossing(yc, prof, 0.1 * height) if height > 0 else 0.0
+        rows.append((xc[i], width, height, depth, area, top_width))
     rows = np.array(rows)
     have_ledger = os.path.exists(os.path.join(case, "postProcessing", "particleLedger", "ledger.csv"))
     if have_ledger:
@@ -519,7 +522,14 @@ def analyse(case, quiet=False):
         "bead_width_spread_mm": 1e3 * float(np.ptp(rows[:, 1])),
         "bead_height_spread_mm": 1e3 * float(np.ptp(rows[:, 2])),
         "penetration_spread_mm": 1e3 * float(np.ptp(rows[:, 3])),
+        "bead_area_mm2": 1e6 * float(np.mean(rows[:, 4])),
+        "deposit_top_width_mm": 1e3 * float(np.mean(rows[:, 5])),
         "section_x_mm": [1e3 * float(rows[0, 0]), 1e3 * float(rows[-1, 0])],
+        "section": section_kind,
+        # the bead's height along the track at the end (largest over y), from the start to 1 mm
+        # past the end: a rising profile at the section says the bead is not yet steady there
+        "height_profile_mm": [[1e3 * float(xc[i]), 1e3 * float(np.max(h[:, i]))] for i in range(nx)
+                              if g.x_start <= xc[i] <= g.x_end + 1e-3],
         "time_s": float(tds[-1]) if not have_ledger else float(led["time"][-1]),
         "cells": int(g.cells()), "dx_mm": 1e3 * meta["dx"], "track_mm": 1e3 * meta["track"],
         "refine_levels": levels, "base_cells": int(base.cells()), "most_cells": fc.most_cells(case, base.cells()),
@@ -554,6 +564,37 @@ def analyse(case, quiet=False):
     if not quiet:
         print_table(summary)
     return summary
+
+
+def outer_crossing(s, f, level):
+    """Largest s where f (sampled at increasing s) falls below level, interpolated; s[-1] when
+    f ends at or above it."""
+    above = np.where(f >= level)[0]
+    j = int(above[-1])
+    if j + 1 == len(f):
+        return float(s[-1])
+    return float(s[j] + (f[j] - level) / (f[j] - f[j + 1]) * (s[j + 1] - s[j]))
+
+
+def measured_section(xc, liquid_last, x_start, x_end, sig, dx, width=0.5e-3):
+    """Cell columns of the measured section and which rule chose them. 'solid': where the
+    experiment cuts its bead, the 0.5 mm (at least two cells) of solid bead just behind the
+    pool's tail at the end, when it lies at least 2.8 sigma of the powder spot past the start
+    (the spot passed it, the deposit froze). 'pool': tracks too short to leave such a bead (CI,
+    the 3 mm full track) keep 1.25-1.75 mm behind the final beam position (2-2.8 sigma, sigma =
+    w/2): >= 97.7 % of the powder that section gets has arrived, the widest pool has passed."""
+    on_track = (xc >= x_start) & (xc <= x_end)
+    molten = np.where(on_track & (liquid_last > 0.0))[0]
+    if len(molten):
+        tail = xc[molten[0]] - 0.5 * dx                  # the pool's trailing face
+        w = max(width, 2.0 * dx)
+        cols = np.where((xc >= tail - w) & (xc < tail))[0]
+        if len(cols) and xc[cols[0]] - 0.5 * dx >= x_start + 2.8 * sig:
+            return cols, "solid"
+    cols = np.where((xc >= x_end - 2.8 * sig) & (xc <= x_end - 2.0 * sig))[0]
+    if len(cols) == 0:           # coarse meshes: the cell column nearest to 2.4 sigma behind
+        cols = np.array([int(np.argmin(np.abs(xc - (x_end - 2.4 * sig))))])
+    return cols, "pool"
 
 
 def geometric_capture(g, meta, tds, read_field, n_last=3):
@@ -615,7 +656,8 @@ def ledger(case):
 
 def print_table(s):
     print(f"lmd-track: {s['cells']} cells ({s['dx_mm']:g} mm), track {s['track_mm']:g} mm, t = {s['time_s']:.3g} s, "
-          f"{s.get('fluid_steps', '-')} steps, section x = {s['section_x_mm'][0]:.2f}-{s['section_x_mm'][1]:.2f} mm")
+          f"{s.get('fluid_steps', '-')} steps, section x = {s['section_x_mm'][0]:.2f}-{s['section_x_mm'][1]:.2f} mm "
+          f"({'solid bead behind the pool' if s.get('section') == 'solid' else 'behind the final beam, in the pool'})")
     print(f"{'quantity':32s} {'measured':>9s} {'experiment':>10s} {'error':>8s} {'thesis sim':>10s}")
     for key, ref in (("bead_width_mm", "width_mm"), ("bead_height_mm", "height_mm"),
                      ("penetration_mm", "penetration_mm"), ("deposition_efficiency_pct", "efficiency_pct")):
@@ -623,6 +665,11 @@ def print_table(s):
             continue
         m, e, t = s[key], EXPERIMENT[ref], THESIS_SIM[ref]
         print(f"{key:32s} {m:9.3f} {e:10.3f} {m - e:+8.3f} {t:10.3f}")
+    if "bead_area_mm2" in s and "powder_fed_kg" in s:
+        e_area = 2.0 / 3.0 * EXPERIMENT["width_mm"] * EXPERIMENT["height_mm"]
+        print(f"bead cross-section {s['bead_area_mm2']:.3f} mm2 (experiment's width and height as a parabola: "
+              f"{e_area:.3f} mm2); the deposit's top falls to 10 % of its height at "
+              f"{s['deposit_top_width_mm']:.2f} mm width")
     if "geometric_capture_pct" in s:
         print(f"bare track (no powder): share of the powder spot on the pool surface "
               f"{s['geometric_capture_pct']:.1f} % "
