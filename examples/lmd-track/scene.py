@@ -460,12 +460,14 @@ def analyse(case, quiet=False):
         raise RuntimeError(f"no written time in {case}")
     # max liquid fraction over the written times: the fused zone
     fmax = np.zeros(g.cells())
+    f_last = np.zeros(g.cells())         # the last time's: where the pool is at the end
     for d in tds:
         p = os.path.join(case, d, "liquidFraction")
         if os.path.exists(p):
             f = read_field(d, "liquidFraction")
             if f.size > 1:
                 fmax = np.maximum(fmax, f)
+                f_last = f if d == tds[-1] else f_last
     fmax = fmax.reshape(nz, ny, nx)
     last = tds[-1]
     alpha = read_field(last, "alpha.metal").reshape(nz, ny, nx)
@@ -473,11 +475,7 @@ def analyse(case, quiet=False):
     # metal column height above the original surface, h(x, y) = sum alpha dz - substrate
     h = np.einsum("kji,k->ji", alpha, dz) - PROCESS["substrate_thickness"]
     sig = 0.25 * PROCESS["spot_diameter"] * meta.get("powder_spot", 1.0)
-    liquid_last = np.zeros(nx)
-    if os.path.exists(os.path.join(case, last, "liquidFraction")):
-        f = read_field(last, "liquidFraction")
-        if f.size > 1:
-            liquid_last = f.reshape(nz, ny, nx).max(axis=(0, 1))
+    liquid_last = f_last.reshape(nz, ny, nx).max(axis=(0, 1))
     cols, section_kind = measured_section(xc, liquid_last, g.x_start, g.x_end, sig, meta["dx"])
     ksurf = np.searchsorted(zc, 0.0) - 1          # top row of substrate cells (centre below z = 0)
     rows = []
@@ -491,9 +489,9 @@ def analyse(case, quiet=False):
         col = fmax[:ksurf + 1, 0, i][::-1]          # from the surface down
         depth = profiles.first_fall(-zc[:ksurf + 1][::-1], col, 0.5)
         # the deposit's cross-section (net metal volume per length, exact on any mesh) and its
-        # width where its top falls, outermost, to 10 % of its height
+        # width where its top falls to 10 % of its height (the outer edge of the bead's run)
         area = 2.0 * float(np.dot(prof, np.diff(g.yf)))
-        top_width = 2.0 * outer_crossing(yc, prof, 0.1 * height) if height > 0 else 0.0
+        top_width = 2.0 * profiles.level_span(prof, yc, 0.1 * height)[1] if height > 0 else 0.0
         rows.append((xc[i], width, height, depth, area, top_width))
     rows = np.array(rows)
     have_ledger = os.path.exists(os.path.join(case, "postProcessing", "particleLedger", "ledger.csv"))
@@ -564,16 +562,6 @@ def analyse(case, quiet=False):
     if not quiet:
         print_table(summary)
     return summary
-
-
-def outer_crossing(s, f, level):
-    """Largest s where f (sampled at increasing s) falls below level, interpolated; s[-1] when
-    f ends at or above it."""
-    above = np.where(f >= level)[0]
-    j = int(above[-1])
-    if j + 1 == len(f):
-        return float(s[-1])
-    return float(s[j] + (f[j] - level) / (f[j] - f[j + 1]) * (s[j + 1] - s[j]))
 
 
 def measured_section(xc, liquid_last, x_start, x_end, sig, dx, width=0.5e-3):
