@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
@@ -240,18 +241,35 @@ void shade_particles(const GaussianBeam &beam, const std::vector<BeamParticle> &
 
   // each row's runs of rays with one owner are summed before they are booked: consecutive
   // rays mostly share their particle, and a sum into memory per ray waits on the last one
-  // (the same pass takes each block's largest entry depth)
+  // (the same pass takes each block's largest entry depth, of all rays and of the hit ones, and
+  // counts each row's hit rays)
   res.intercepted.assign(particles.size(), 0.0);
-  g.block_max_entry_depth.assign(static_cast<std::size_t>(g.nb) * g.nb, -std::numeric_limits<double>::infinity());
+  g.block_max_entry_depth.assign(static_cast<std::size_t>(g.nb) * g.nb, -inf);
+  g.block_max_hit_depth.assign(static_cast<std::size_t>(g.nb) * g.nb, -inf);
+  // (16-bit counts: rows of up to 65535 rays; wider grids read their rays)
+  const bool count_hits = n <= std::numeric_limits<std::uint16_t>::max();
+  g.hits_before.resize(count_hits ? static_cast<std::size_t>(n) * (n + 1) : 0);
   for (int j = 0; j < n; ++j) {
     const int *owner = g.owner.data() + static_cast<std::size_t>(j) * n;
     const double *entry = g.entry_depth.data() + static_cast<std::size_t>(j) * n;
     double *block_max = g.block_max_entry_depth.data() + static_cast<std::size_t>(j / kShadowBlock) * g.nb;
+    double *block_hit = g.block_max_hit_depth.data() + static_cast<std::size_t>(j / kShadowBlock) * g.nb;
+    std::uint16_t *before = count_hits ? g.hits_before.data() + static_cast<std::size_t>(j) * (n + 1) : nullptr;
+    std::uint16_t hits = 0;
     for (int i0 = 0; i0 < n; i0 += kShadowBlock) {
-      double largest = block_max[i0 / kShadowBlock];
-      for (int i = i0; i < std::min(n, i0 + kShadowBlock); ++i) largest = std::max(largest, entry[i]);
+      double largest = block_max[i0 / kShadowBlock], largest_hit = block_hit[i0 / kShadowBlock];
+      for (int i = i0; i < std::min(n, i0 + kShadowBlock); ++i) {
+        largest = std::max(largest, entry[i]);
+        if (before) before[i] = hits;
+        if (owner[i] >= 0) {
+          largest_hit = std::max(largest_hit, entry[i]);
+          ++hits;
+        }
+      }
       block_max[i0 / kShadowBlock] = largest;
+      block_hit[i0 / kShadowBlock] = largest_hit;
     }
+    if (before) before[n] = hits;
     for (int i = 0; i < n;) {
       const int o = owner[i];
       double run = 0.0;
@@ -352,6 +370,8 @@ double transmitted_fraction(const ShadowResult &result, const Eigen::Vector3d &p
   const double m = g.n / 2, inv_h = 1.0 / g.h;
   const bool blocks = g.nb > 0 && g.block_entry_depth.size() == static_cast<std::size_t>(g.nb) * g.nb &&
                       g.block_max_entry_depth.size() == g.block_entry_depth.size();
+  const bool hit_counts = blocks && g.block_max_hit_depth.size() == g.block_entry_depth.size() &&
+                          g.hits_before.size() == static_cast<std::size_t>(g.n) * (g.n + 1);
   // lattice index of a ray; those outside the grid carry no particle: lit
   auto lit_at = [&](double fi, double fj) {
     if (fi < 0 || fj < 0 || fi >= g.n || fj >= g.n) return true;
@@ -410,12 +430,17 @@ double transmitted_fraction(const ShadowResult &result, const Eigen::Vector3d &p
       const std::size_t block_row = static_cast<std::size_t>(fj) / kShadowBlock * g.nb;
       const double *bmin = blocks ? g.block_entry_depth.data() + block_row : nullptr;
       const double *bmax = blocks ? g.block_max_entry_depth.data() + block_row : nullptr;
+      const double *bhit = hit_counts ? g.block_max_hit_depth.data() + block_row : nullptr;
+      const std::uint16_t *before =
+          hit_counts ? g.hits_before.data() + static_cast<std::size_t>(fj) * (g.n + 1) : nullptr;
       for (std::size_t i = lo; i <= hi;) {
         const std::size_t end = std::min(hi, (i / kShadowBlock + 1) * kShadowBlock - 1);
         if (bmin && depth < bmin[i / kShadowBlock]) {
           // every ray of the block lit at this depth
         } else if (bmax && !(depth < bmax[i / kShadowBlock])) {
           dark += static_cast<long>(end - i + 1);  // every ray of the block dark
+        } else if (bhit && !(depth < bhit[i / kShadowBlock])) {
+          dark += before[end + 1] - before[i];  // below every hit ray of the block: its hit rays dark
         } else {
           for (std::size_t k = i; k <= end; ++k) dark += depth < g.entry_depth[row + k] ? 0 : 1;
         }

@@ -404,22 +404,39 @@ TEST(LaserShadowing, FootprintFractionEqualsRayCount)
   const ShadowGrid &g = r.grid;
   ASSERT_EQ(g.nb, (g.n + kShadowBlock - 1) / kShadowBlock);
   ASSERT_EQ(g.block_max_entry_depth.size(), g.block_entry_depth.size());
-  int wrong_blocks = 0, wrong_max = 0, covered = 0;
+  ASSERT_EQ(g.block_max_hit_depth.size(), g.block_entry_depth.size());
+  ASSERT_EQ(g.hits_before.size(), std::size_t(g.n) * (g.n + 1));
+  int wrong_blocks = 0, wrong_max = 0, wrong_hit = 0, covered = 0, mixed = 0;
   for (int bj = 0; bj < g.nb; ++bj)
     for (int bi = 0; bi < g.nb; ++bi) {
-      double lowest = std::numeric_limits<double>::infinity(), largest = -lowest;
+      double lowest = std::numeric_limits<double>::infinity(), largest = -lowest, largest_hit = -lowest;
       for (int j = bj * kShadowBlock; j < std::min(g.n, (bj + 1) * kShadowBlock); ++j)
         for (int i = bi * kShadowBlock; i < std::min(g.n, (bi + 1) * kShadowBlock); ++i) {
-          lowest = std::min(lowest, g.entry_depth[std::size_t(j) * g.n + i]);
-          largest = std::max(largest, g.entry_depth[std::size_t(j) * g.n + i]);
+          const double e = g.entry_depth[std::size_t(j) * g.n + i];
+          lowest = std::min(lowest, e);
+          largest = std::max(largest, e);
+          if (std::isfinite(e)) largest_hit = std::max(largest_hit, e);
         }
       wrong_blocks += g.block_entry_depth[std::size_t(bj) * g.nb + bi] == lowest ? 0 : 1;
       wrong_max += g.block_max_entry_depth[std::size_t(bj) * g.nb + bi] == largest ? 0 : 1;
+      wrong_hit += g.block_max_hit_depth[std::size_t(bj) * g.nb + bi] == largest_hit ? 0 : 1;
       covered += std::isfinite(largest) ? 1 : 0;
+      mixed += std::isfinite(lowest) && !std::isfinite(largest) ? 1 : 0;
     }
   EXPECT_EQ(wrong_blocks, 0) << "blocks whose smallest entry depth is not their rays' smallest";
   EXPECT_EQ(wrong_max, 0) << "blocks whose largest entry depth is not their rays' largest";
+  EXPECT_EQ(wrong_hit, 0) << "blocks whose largest hit entry depth is not their hit rays' largest";
   EXPECT_GT(covered, 0) << "no block wholly in shadow: the dark-block path is not exercised";
+  EXPECT_GT(mixed, 0) << "no block partly hit: the hit-count path is not exercised";
+  int wrong_counts = 0;
+  for (int j = 0; j < g.n; ++j) {
+    int hits = 0;
+    for (int i = 0; i <= g.n; ++i) {
+      wrong_counts += g.hits_before[std::size_t(j) * (g.n + 1) + i] == hits ? 0 : 1;
+      if (i < g.n) hits += g.owner[std::size_t(j) * g.n + i] >= 0 ? 1 : 0;
+    }
+  }
+  EXPECT_EQ(wrong_counts, 0) << "row hit counts that are not the rays' count";
   std::uniform_real_distribution<double> where(-5.0 * w, 5.0 * w), height(-0.8 * w, 1.0 * w);
   int checked = 0, differ = 0, partial = 0;
   double t_fast = 0.0, t_rays = 0.0;
@@ -465,6 +482,8 @@ TEST(LaserShadowing, ReusedResultEqualsFresh)
     EXPECT_EQ(reused.grid.owner, fresh.grid.owner);
     EXPECT_EQ(reused.grid.block_entry_depth, fresh.grid.block_entry_depth);
     EXPECT_EQ(reused.grid.block_max_entry_depth, fresh.grid.block_max_entry_depth);
+    EXPECT_EQ(reused.grid.block_max_hit_depth, fresh.grid.block_max_hit_depth);
+    EXPECT_EQ(reused.grid.hits_before, fresh.grid.hits_before);
     EXPECT_EQ(reused.intercepted, fresh.intercepted);
     EXPECT_EQ(reused.absorbed, fresh.absorbed);
     EXPECT_EQ(reused.transmitted_power, fresh.transmitted_power);

@@ -93,6 +93,11 @@ struct ShadowGrid {
   // the largest entry depth in each block (+inf where a ray of the block is not hit): a point
   // at or below it is dark for every ray of the block
   std::vector<double> block_max_entry_depth;
+  // the largest entry depth of the block's hit rays (-inf where none is hit): at or below it a
+  // point is dark for exactly the block's hit rays, which hits_before counts along a row
+  std::vector<double> block_max_hit_depth;
+  // per row j, n + 1 entries: hits_before[j (n + 1) + i] = rays hit among (0..i-1, j)
+  std::vector<std::uint16_t> hits_before;
 };
 inline constexpr int kShadowBlock = 16;  // rays per block side
 
