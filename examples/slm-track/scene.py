@@ -87,12 +87,15 @@ def mpi_env():
 
 # ------------------------------------------------------------------------------------------ build
 def pour_bed(case, v):
-    """Run examples/powder-bed for this floor (closed box, Codina2019 table 4.3) into CASE/bed/."""
+    """Run examples/powder-bed for this floor (closed box, Codina2019 table 4.3) into CASE/bed/;
+    v["seed"], where given, pours another bed (the input's own seed otherwise)."""
     bed = os.path.join(case, "bed")
     os.makedirs(bed, exist_ok=True)
     cmd = [paths.binary("meltdem-lmp"), "-in", os.path.join(SRC, "examples", "powder-bed", "in.powder-bed"),
            "-var", "Lx", repr(v["lx"]), "-var", "Lz", repr(v["lz"]), "-var", "sides", "wall",
            "-var", "every", "2000", "-var", "dump", "bed.dump", "-log", "log.powder-bed"]
+    if v.get("seed"):
+        cmd += ["-var", "seed", str(int(v["seed"]))]
     if v.get("np", 1) > 1:
         cmd = ["mpirun", "--allow-run-as-root", "--oversubscribe", "-np", str(v["np"])] + cmd
     t = time.time()
@@ -176,18 +179,20 @@ run             0
 """)
 
 
-def refinement_dict(levels, interval=1):
+def refinement_dict(levels, interval=1, grain_reach=1.0):
     """refinement{} of a --refine run: the finest cells in the melt pool and the metal about to melt,
     under the beam and where it will be over the next half spot of travel (at least until the next
-    update), and around the grains near either; coarse cells elsewhere."""
+    update), and within grain_reach diameters of the grains near either; coarse cells elsewhere."""
     ahead = f"lookAhead {interval}; lookAheadTime {0.5 * SPOT / SPEED!r};"
+    grains = f"type particles; diameters {grain_reach:g}; near (pool beam);"
     return fc.refinement_dict(levels, interval, [("meltPool", "belowSolidus 300;"),
                                                  ("laser", f"radii 1.5; {ahead}"),
-                                                 ("grains", "type particles; diameters 1; near (pool beam);")])
+                                                 ("grains", grains)])
 
 
 def build(case, variant, cell=None, bed=None, track=None, distribution="overlap", np_=1, gas_cp=None, fluid_dt=None,
-          gas_mu=None, surface=None, refine=0, refine_interval=1, courant=None, laser_args=None, vapour_jet=False):
+          gas_mu=None, surface=None, refine=0, refine_interval=1, courant=None, laser_args=None, vapour_jet=False,
+          grain_reach=1.0):
     v = dict(VARIANTS[variant])
     surface = SURFACE if surface is None else surface
     gas_cp = gas_cp or GAS_CP_CASE
@@ -279,7 +284,7 @@ energyControls {{ nCorrectors 50; tolerance 1e-13; }}
     distribution    {distribution};
     demStepsPerFluidStep {sub_cycles};
 }}
-{refinement_dict(refine, refine_interval) if refine else ""}""")
+{refinement_dict(refine, refine_interval, grain_reach) if refine else ""}""")
     dump_every = 1000  # DEM steps (5 us between snapshots)
     lammps_input(case, v, dump_every)
     meta = dict(scene="slm-track", variant=variant, n_cells=list(n), particles=nparticles, t_scan_s=t_scan,

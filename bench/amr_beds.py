@@ -1,0 +1,167 @@
+#!/usr/bin/env python3
+"""The refined slm-track against the uniform mesh on several poured beds: examples/slm-track's full
+floor (0.9 x 0.9 mm, 1375 grains poured by examples/powder-bed with each seed), 0.2 mm of track,
+the flow's own step (Courant number <= 0.3, at most 0.5 us). Per bed: the uniform mesh of 15 um
+cells, and a 60 um base mesh refined twice to 15 um by the scene's refinement{} (mesh updated every
+10 fluid steps) with the grains criterion's reach of each --reach (grain diameters; the scene's is
+1). A single bed is one sample of the refined run's error; over several the table gives its mean,
+spread and largest value, and the bed-to-bed spread of the uniform track itself. Writes
+amr_beds.md and amr_beds.png next to this script.
+
+    /usr/bin/python3 bench/amr_beds.py [--seeds 4242,1,2,3,5,6] [--reach 1,0.5] [--work DIR] [--out DIR]
+                                       [--jobs N] [--from-results]
+
+Runs already in DIR/results.json are kept (a stopped sweep resumes); --from-results only rewrites the
+table and plot. Run by hand: about 25 min of CPU per uniform run, 5 per refined run.
+"""
+import argparse
+import json
+import os
+import sys
+from concurrent.futures import ProcessPoolExecutor
+
+import numpy as np
+
+from meltdem import scene as scenes
+from meltdem.case import foam as fc
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+scene = scenes.module("slm-track")
+CELL, LEVELS, FLUID_DT, TRACK, INTERVAL, COURANT = 15e-6, 2, 5e-7, 2e-4, 10, 0.3
+
+
+def one(work, seed, reach):
+    """One run on the bed poured with `seed`: reach 0 is the uniform mesh, else the refined one."""
+    bed = os.path.join(work, f"seed{seed}", "bed", "bed.dump")
+    case = os.path.join(work, f"seed{seed}", "uniform" if reach == 0 else f"reach{reach:g}")
+    scene.build(case, "full", cell=CELL, bed=bed, fluid_dt=FLUID_DT, refine=LEVELS if reach else 0, track=TRACK,
+                refine_interval=INTERVAL, courant=COURANT, grain_reach=reach or 1.0)
+    scene.run(case)
+    s = scene.analyse(case)
+    meta = json.load(open(os.path.join(case, "scene.json")))
+    return dict(seed=seed, reach=reach, cells=fc.most_cells(case, np.prod(meta["n_cells"])),
+                width_um=s["track_width_m"] * 1e6, depth_um=s["track_depth_m"] * 1e6, cpu_s=s["cpu_s"])
+
+
+def pour(work, seed):
+    if not os.path.exists(os.path.join(work, f"seed{seed}", "bed", "bed.dump")):
+        scene.pour_bed(os.path.join(work, f"seed{seed}"), dict(scene.VARIANTS["full"], np=1, seed=seed))
+
+
+def changes(rows, reach):
+    """Per bed with both runs: (seed, uniform row, refined row, width change %, depth change %, CPU ratio)."""
+    out = []
+    for u in (r for r in rows if r["reach"] == 0):
+        for a in (r for r in rows if r["reach"] == reach and r["seed"] == u["seed"]):
+            out.append((u["seed"], u, a, (a["width_um"] / u["width_um"] - 1) * 100,
+                        (a["depth_um"] / u["depth_um"] - 1) * 100, u["cpu_s"] / a["cpu_s"]))
+    return out
+
+
+def spread(x):
+    """mean +- sample standard deviation, and the largest magnitude."""
+    x = np.asarray(x)
+    sd = np.std(x, ddof=1) if len(x) > 1 else 0.0
+    return f"{np.mean(x):+.1f} +- {sd:.1f} % (largest {x[np.argmax(abs(x))]:+.1f} %)"
+
+
+def write(rows, reaches, out):
+    what = " ".join(__doc__.split("\n\n")[0].split(": ", 1)[1].split(" A single")[0].split())
+    lines = ["# Refined vs uniform slm-track on several poured beds", "",
+             f"`bench/amr_beds.py`: {what} One rank; CPU = the solver's ExecutionTime.", "",
+             "| bed seed | mesh | most cells | width [um] | depth [um] | CPU [s] | width vs uniform | depth vs uniform "
+             "| CPU uniform / AMR |", "|---|---|---|---|---|---|---|---|---|"]
+    for seed in dict.fromkeys(r["seed"] for r in rows):
+        u = next((r for r in rows if r["seed"] == seed and r["reach"] == 0), None)
+        for r in sorted((r for r in rows if r["seed"] == seed), key=lambda r: (r["reach"] != 0, -r["reach"])):
+            mesh = "uniform 15 um" if r["reach"] == 0 else f"60 -> 15 um, grains `diameters {r['reach']:g}`"
+            cells = [str(seed), mesh, str(r["cells"]), f"{r['width_um']:.1f}", f"{r['depth_um']:.2f}",
+                     f"{r['cpu_s']:.0f}"]
+            if r["reach"] == 0 or u is None:
+                cells += ["", "", ""]
+            else:
+                cells += [f"{(r['width_um'] / u['width_um'] - 1) * 100:+.1f} %",
+                          f"{(r['depth_um'] / u['depth_um'] - 1) * 100:+.1f} %", f"{u['cpu_s'] / r['cpu_s']:.1f}"]
+            lines.append("| " + " | ".join(cells) + " |")
+    uni = [r for r in rows if r["reach"] == 0]
+    lines += ["", "Over the beds (mean +- sample standard deviation; issue 15's limit: 2 % of the uniform result):", "",
+              "| mesh | beds | width vs uniform | depth vs uniform | beds with both within 2 % | CPU uniform / AMR |",
+              "|---|---|---|---|---|---|"]
+    for reach in reaches:
+        c = changes(rows, reach)
+        if not c:
+            continue
+        inside = sum(abs(w) <= 2 and abs(d) <= 2 for *_, w, d, _ in c)
+        ratios = [x[5] for x in c]
+        lines.append(f"| refined, grains `diameters {reach:g}` | {len(c)} | {spread([x[3] for x in c])} | "
+                     f"{spread([x[4] for x in c])} | {inside} of {len(c)} | {np.mean(ratios):.1f} "
+                     f"({min(ratios):.1f}-{max(ratios):.1f}) |")
+    if len(uni) > 1:
+        w, d = [r["width_um"] for r in uni], [r["depth_um"] for r in uni]
+        sw, sd = np.std(w, ddof=1), np.std(d, ddof=1)
+        lines += ["", f"The uniform track itself, bed to bed ({len(uni)} beds): width {np.mean(w):.1f} +- {sw:.1f} um "
+                  f"({sw / np.mean(w) * 100:.1f} %), depth {np.mean(d):.2f} +- {sd:.2f} um "
+                  f"({sd / np.mean(d) * 100:.1f} %)."]
+    open(os.path.join(out, "amr_beds.md"), "w").write("\n".join(lines) + "\n")
+    plot(rows, reaches, os.path.join(out, "amr_beds.png"))
+
+
+def plot(rows, reaches, png):
+    """Width and depth change of each bed's refined run against its uniform run, the 2 % band shaded."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, ax = plt.subplots(1, 2, figsize=(9, 3.6), sharey=True)
+    seeds = list(dict.fromkeys(r["seed"] for r in rows if r["reach"] == 0))
+    for k, (col, what) in enumerate(((3, "track width"), (4, "track depth"))):
+        ax[k].axhspan(-2, 2, color="0.9", label="2 % of uniform")
+        ax[k].axhline(0, color="k", lw=0.6)
+        for j, (reach, mk) in enumerate(zip(reaches, "os^v")):
+            c = changes(rows, reach)
+            x = [seeds.index(s) + 0.12 * (j - (len(reaches) - 1) / 2) for s, *_ in c]
+            y = [v[col] for v in c]
+            ax[k].plot(x, y, mk, label=f"refined, diameters {reach:g}")
+            if y:
+                ax[k].axhline(np.mean(y), color=f"C{j}", lw=0.8, ls="--")
+        ax[k].set_xticks(range(len(seeds)))
+        ax[k].set_xticklabels([str(s) for s in seeds])
+        ax[k].set_xlabel("bed seed")
+        ax[k].set_title(what, fontsize=10)
+    ax[0].set_ylabel("refined vs uniform [%] (dashed: mean)")
+    ax[1].legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(png, dpi=110)
+    os.chmod(png, 0o644)
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--seeds", default="4242,1,2,3,5,6", help="powder-bed seeds, one bed each")
+    ap.add_argument("--reach", default="1,0.5", help="the grains criterion's diameters of the refined runs")
+    ap.add_argument("--work", default="/tmp/meltdem-amr-beds")
+    ap.add_argument("--out", default=HERE)
+    ap.add_argument("--jobs", type=int, default=1, help="runs at once")
+    ap.add_argument("--from-results", action="store_true", help="rewrite the table and plot from DIR/results.json")
+    a = ap.parse_args()
+    seeds = [int(s) for s in a.seeds.split(",")]
+    reaches = [float(r) for r in a.reach.split(",")]
+    if any(r <= 0 for r in reaches):
+        ap.error("--reach: grain diameters must be > 0")
+    os.makedirs(a.work, exist_ok=True)
+    store = os.path.join(a.work, "results.json")
+    rows = json.load(open(store)) if os.path.exists(store) else []
+    if not a.from_results:
+        todo = [(s, r) for s in seeds for r in [0.0] + reaches
+                if not any(x["seed"] == s and x["reach"] == r for x in rows)]
+        with ProcessPoolExecutor(a.jobs) as pool:
+            list(pool.map(pour, [a.work] * len(seeds), seeds))
+            for row in pool.map(one, [a.work] * len(todo), *zip(*todo)) if todo else []:
+                rows.append(row)
+                json.dump(rows, open(store, "w"), indent=1)
+    rows = [r for r in rows if r["seed"] in seeds and (r["reach"] == 0 or r["reach"] in reaches)]
+    write(rows, reaches, a.out)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
