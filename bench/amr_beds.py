@@ -4,8 +4,11 @@ floor (0.9 x 0.9 mm, 1375 grains poured by examples/powder-bed with each seed), 
 the flow's own step (Courant number <= 0.3, at most 0.5 us). Per bed: the uniform mesh of 15 um
 cells, and a 60 um base mesh refined twice to 15 um by the scene's refinement{} (mesh updated every
 10 fluid steps) with the grains criterion's reach of each --reach (grain diameters; the scene's is
-1). A single bed is one sample of the refined run's error; over several the table gives its mean,
-spread and largest value, and the bed-to-bed spread of the uniform track itself. Writes
+1). Compared: the track's width (its widest span at the half-liquid temperature at any height,
+grains above the plate included), its width on the substrate's top plane, and its depth (medians
+over the track's slices). A single bed is one sample of the refined run's error; over several the
+table gives its mean, spread and largest value, and the bed-to-bed spread of the uniform track
+itself. Writes
 amr_beds.md and amr_beds.png next to this script.
 
     /usr/bin/python3 bench/amr_beds.py [--seeds 4242,1,2,3,5,6] [--reach 1,0.5] [--work DIR] [--out DIR]
@@ -28,6 +31,8 @@ from meltdem.case import foam as fc
 HERE = os.path.dirname(os.path.abspath(__file__))
 scene = scenes.module("slm-track")
 CELL, LEVELS, FLUID_DT, TRACK, INTERVAL, COURANT = 15e-6, 2, 5e-7, 2e-4, 10, 0.3
+MEASURES = [("width_um", "width [um]", "{:.1f}"), ("width_surface_um", "top-plane width [um]", "{:.1f}"),
+            ("depth_um", "depth [um]", "{:.2f}")]
 
 
 def one(work, seed, reach):
@@ -40,7 +45,8 @@ def one(work, seed, reach):
     s = scene.analyse(case)
     meta = json.load(open(os.path.join(case, "scene.json")))
     return dict(seed=seed, reach=reach, cells=fc.most_cells(case, np.prod(meta["n_cells"])),
-                width_um=s["track_width_m"] * 1e6, depth_um=s["track_depth_m"] * 1e6, cpu_s=s["cpu_s"])
+                width_um=s["track_width_m"] * 1e6, width_surface_um=s["track_width_surface_m"] * 1e6,
+                depth_um=s["track_depth_m"] * 1e6, cpu_s=s["cpu_s"])
 
 
 def pour(work, seed):
@@ -49,12 +55,12 @@ def pour(work, seed):
 
 
 def changes(rows, reach):
-    """Per bed with both runs: (seed, uniform row, refined row, width change %, depth change %, CPU ratio)."""
+    """Per bed with both runs: (seed, {measure: refined vs uniform in %}, CPU ratio uniform / refined)."""
     out = []
     for u in (r for r in rows if r["reach"] == 0):
         for a in (r for r in rows if r["reach"] == reach and r["seed"] == u["seed"]):
-            out.append((u["seed"], u, a, (a["width_um"] / u["width_um"] - 1) * 100,
-                        (a["depth_um"] / u["depth_um"] - 1) * 100, u["cpu_s"] / a["cpu_s"]))
+            out.append((u["seed"], {k: (a[k] / u[k] - 1) * 100 for k, *_ in MEASURES if k in a and k in u},
+                        u["cpu_s"] / a["cpu_s"]))
     return out
 
 
@@ -67,68 +73,71 @@ def spread(x):
 
 def write(rows, reaches, out):
     what = " ".join(__doc__.split("\n\n")[0].split(": ", 1)[1].split(" A single")[0].split())
+    names = [h.split(" [")[0] for _, h, _ in MEASURES]
     lines = ["# Refined vs uniform slm-track on several poured beds", "",
              f"`bench/amr_beds.py`: {what} One rank; CPU = the solver's ExecutionTime.", "",
-             "| bed seed | mesh | most cells | width [um] | depth [um] | CPU [s] | width vs uniform | depth vs uniform "
-             "| CPU uniform / AMR |", "|---|---|---|---|---|---|---|---|---|"]
+             "| bed seed | mesh | most cells | " + " | ".join(h for _, h, _ in MEASURES) + " | CPU [s] | "
+             + " | ".join(f"{n} vs uniform" for n in names) + " | CPU uniform / AMR |",
+             "|" + "---|" * (4 + 2 * len(MEASURES) + 1)]
     for seed in dict.fromkeys(r["seed"] for r in rows):
         u = next((r for r in rows if r["seed"] == seed and r["reach"] == 0), None)
         for r in sorted((r for r in rows if r["seed"] == seed), key=lambda r: (r["reach"] != 0, -r["reach"])):
             mesh = "uniform 15 um" if r["reach"] == 0 else f"60 -> 15 um, grains `diameters {r['reach']:g}`"
-            cells = [str(seed), mesh, str(r["cells"]), f"{r['width_um']:.1f}", f"{r['depth_um']:.2f}",
-                     f"{r['cpu_s']:.0f}"]
+            cells = [str(seed), mesh, str(r["cells"])] + [f.format(r[k]) if k in r else "" for k, _, f in MEASURES]
+            cells.append(f"{r['cpu_s']:.0f}")
             if r["reach"] == 0 or u is None:
-                cells += ["", "", ""]
+                cells += [""] * (len(MEASURES) + 1)
             else:
-                cells += [f"{(r['width_um'] / u['width_um'] - 1) * 100:+.1f} %",
-                          f"{(r['depth_um'] / u['depth_um'] - 1) * 100:+.1f} %", f"{u['cpu_s'] / r['cpu_s']:.1f}"]
+                cells += [f"{(r[k] / u[k] - 1) * 100:+.1f} %" if k in r and k in u else "" for k, *_ in MEASURES]
+                cells.append(f"{u['cpu_s'] / r['cpu_s']:.1f}")
             lines.append("| " + " | ".join(cells) + " |")
-    uni = [r for r in rows if r["reach"] == 0]
     lines += ["", "Over the beds (mean +- sample standard deviation; issue 15's limit: 2 % of the uniform result):", "",
-              "| mesh | beds | width vs uniform | depth vs uniform | beds with both within 2 % | CPU uniform / AMR |",
-              "|---|---|---|---|---|---|"]
+              "| mesh | beds | " + " | ".join(f"{n} vs uniform" for n in names)
+              + " | beds with all within 2 % | CPU uniform / AMR |", "|" + "---|" * (len(MEASURES) + 4)]
     for reach in reaches:
         c = changes(rows, reach)
         if not c:
             continue
-        inside = sum(abs(w) <= 2 and abs(d) <= 2 for *_, w, d, _ in c)
-        ratios = [x[5] for x in c]
-        lines.append(f"| refined, grains `diameters {reach:g}` | {len(c)} | {spread([x[3] for x in c])} | "
-                     f"{spread([x[4] for x in c])} | {inside} of {len(c)} | {np.mean(ratios):.1f} "
-                     f"({min(ratios):.1f}-{max(ratios):.1f}) |")
+        inside = sum(all(abs(v) <= 2 for v in pct.values()) for _, pct, _ in c)
+        ratios = [x[2] for x in c]
+        cols = [spread([pct[k] for _, pct, _ in c if k in pct]) for k, *_ in MEASURES]
+        lines.append(f"| refined, grains `diameters {reach:g}` | {len(c)} | " + " | ".join(cols)
+                     + f" | {inside} of {len(c)} | {np.mean(ratios):.1f} ({min(ratios):.1f}-{max(ratios):.1f}) |")
+    uni = [r for r in rows if r["reach"] == 0]
     if len(uni) > 1:
-        w, d = [r["width_um"] for r in uni], [r["depth_um"] for r in uni]
-        sw, sd = np.std(w, ddof=1), np.std(d, ddof=1)
-        lines += ["", f"The uniform track itself, bed to bed ({len(uni)} beds): width {np.mean(w):.1f} +- {sw:.1f} um "
-                  f"({sw / np.mean(w) * 100:.1f} %), depth {np.mean(d):.2f} +- {sd:.2f} um "
-                  f"({sd / np.mean(d) * 100:.1f} %)."]
+        parts = []
+        for (k, h, f), n in zip(MEASURES, names):
+            v = [r[k] for r in uni if k in r]
+            sd = np.std(v, ddof=1)
+            parts.append(f"{n} {f.format(np.mean(v))} +- {f.format(sd)} um ({sd / np.mean(v) * 100:.1f} %)")
+        lines += ["", f"The uniform track itself, bed to bed ({len(uni)} beds): " + ", ".join(parts) + "."]
     open(os.path.join(out, "amr_beds.md"), "w").write("\n".join(lines) + "\n")
     plot(rows, reaches, os.path.join(out, "amr_beds.png"))
 
 
 def plot(rows, reaches, png):
-    """Width and depth change of each bed's refined run against its uniform run, the 2 % band shaded."""
+    """Each measure's change of each bed's refined run against its uniform run, the 2 % band shaded."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    fig, ax = plt.subplots(1, 2, figsize=(9, 3.6), sharey=True)
+    fig, ax = plt.subplots(1, len(MEASURES), figsize=(4.3 * len(MEASURES), 3.6), sharey=True)
     seeds = list(dict.fromkeys(r["seed"] for r in rows if r["reach"] == 0))
-    for k, (col, what) in enumerate(((3, "track width"), (4, "track depth"))):
+    for k, (key, head, _) in enumerate(MEASURES):
         ax[k].axhspan(-2, 2, color="0.9", label="2 % of uniform")
         ax[k].axhline(0, color="k", lw=0.6)
         for j, (reach, mk) in enumerate(zip(reaches, "os^v")):
-            c = changes(rows, reach)
-            x = [seeds.index(s) + 0.12 * (j - (len(reaches) - 1) / 2) for s, *_ in c]
-            y = [v[col] for v in c]
+            c = [(s, pct[key]) for s, pct, _ in changes(rows, reach) if key in pct]
+            x = [seeds.index(s) + 0.12 * (j - (len(reaches) - 1) / 2) for s, _ in c]
+            y = [v for _, v in c]
             ax[k].plot(x, y, mk, label=f"refined, diameters {reach:g}")
             if y:
                 ax[k].axhline(np.mean(y), color=f"C{j}", lw=0.8, ls="--")
         ax[k].set_xticks(range(len(seeds)))
         ax[k].set_xticklabels([str(s) for s in seeds])
         ax[k].set_xlabel("bed seed")
-        ax[k].set_title(what, fontsize=10)
+        ax[k].set_title("track " + head.split(" [")[0], fontsize=10)
     ax[0].set_ylabel("refined vs uniform [%] (dashed: mean)")
-    ax[1].legend(fontsize=8)
+    ax[-1].legend(fontsize=8)
     fig.tight_layout()
     fig.savefig(png, dpi=110)
     os.chmod(png, 0o644)
