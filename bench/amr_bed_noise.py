@@ -7,7 +7,7 @@ per --replicates seed; 0 is the bed as poured, whose dump holds the centres to 6
 0.1 nm). The uniform runs against each other give the track's own sensitivity to a move of its
 bed that no measurement could see; the refined run against the uniform run of the same copy gives
 the refinement's error on each copy. Writes amr_bed_noise.md and amr_bed_noise.png next
-to this script.
+to this script (amr_bed_noise_seedN.* for another --seed than 4242).
 
     /usr/bin/python3 bench/amr_bed_noise.py [--seed 4242] [--jitter 1e-12] [--replicates 0,1,2]
                                             [--reach 1] [--work DIR] [--out DIR] [--jobs N]
@@ -88,9 +88,9 @@ def spans(rows, reach):
     return out
 
 
-def write(rows, reach, jitter, out):
+def write(rows, reach, jitter, out, seed):
     names = [h.split(" [")[0] for _, h, _ in MEASURES]
-    seed = rows[0]["seed"]
+    stem = "amr_bed_noise" if seed == 4242 else f"amr_bed_noise_seed{seed}"
     lines = ["# The slm-track pair against a picometre move of its bed", "",
              f"`bench/amr_bed_noise.py`: examples/slm-track's full floor, the bed poured with seed {seed} and copies "
              f"of it with every grain moved at random by at most {jitter:g} m in x, y and z (replicate 0: the bed "
@@ -136,8 +136,8 @@ def write(rows, reach, jitter, out):
         lines.append("| refined mean vs uniform mean | | " + " | ".join(
             f"{(np.mean([r[k] for r in means[reach]]) / np.mean([r[k] for r in means[0.0]]) - 1) * 100:+.1f} %"
             for k, *_ in MEASURES) + " |")
-    open(os.path.join(out, "amr_bed_noise.md"), "w").write("\n".join(lines) + "\n")
-    plot(rows, reach, os.path.join(out, "amr_bed_noise.png"))
+    open(os.path.join(out, stem + ".md"), "w").write("\n".join(lines) + "\n")
+    plot(rows, reach, os.path.join(out, stem + ".png"))
 
 
 def plot(rows, reach, png):
@@ -194,7 +194,7 @@ def main():
                 rows.append(row)
                 json.dump(rows, open(store, "w"), indent=1)
     rows = [r for r in rows if r["seed"] == a.seed and r["replicate"] in reps and r["reach"] in (0.0, a.reach)]
-    write(rows, a.reach, a.jitter, a.out)
+    write(rows, a.reach, a.jitter, a.out, a.seed)
     return 0
 
 
