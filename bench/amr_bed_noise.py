@@ -159,10 +159,7 @@ def plot(rows, reach, png):
         ax[k].set_xticklabels([str(r) for r in reps])
         ax[k].set_xlabel("replicate (0: as poured)")
         ax[k].set_title("track " + head, fontsize=10)
-    ax[-1].legend(fontsize=8)
-    fig.tight_layout()
-    fig.savefig(png, dpi=110)
-    os.chmod(png, 0o644)
+    amr_beds.save_figure(fig, ax, png)
 
 
 def main():

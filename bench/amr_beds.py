@@ -137,6 +137,11 @@ def plot(rows, reaches, png):
         ax[k].set_xlabel("bed seed")
         ax[k].set_title("track " + head.split(" [")[0], fontsize=10)
     ax[0].set_ylabel("refined vs uniform [%] (dashed: mean)")
+    save_figure(fig, ax, png)
+
+
+def save_figure(fig, ax, png):
+    """The legend on the last panel, then the PNG, readable by all."""
     ax[-1].legend(fontsize=8)
     fig.tight_layout()
     fig.savefig(png, dpi=110)
