@@ -60,16 +60,8 @@ def one(work, seed, jitter, replicate, reach):
     """One run on copy `replicate` of the bed: reach 0 is the uniform mesh, else the refined one."""
     bed = jittered_bed(work, seed, jitter, replicate)
     case = os.path.join(work, f"seed{seed}", f"r{replicate}-" + ("uniform" if reach == 0 else f"reach{reach:g}"))
-    amr_beds.scene.build(case, "full", cell=amr_beds.CELL, bed=bed, fluid_dt=amr_beds.FLUID_DT,
-                         refine=amr_beds.LEVELS if reach else 0, track=amr_beds.TRACK,
-                         refine_interval=amr_beds.INTERVAL, courant=amr_beds.COURANT, grain_reach=reach or 1.0)
-    amr_beds.scene.run(case)
-    s = amr_beds.scene.analyse(case)
-    meta = json.load(open(os.path.join(case, "scene.json")))
-    return dict(seed=seed, jitter=jitter if replicate else 0.0, replicate=replicate, reach=reach,
-                cells=amr_beds.fc.most_cells(case, np.prod(meta["n_cells"])), width_um=s["track_width_m"] * 1e6,
-                width_surface_um=s["track_width_surface_m"] * 1e6, depth_um=s["track_depth_m"] * 1e6,
-                cpu_s=s["cpu_s"])
+    return dict(seed=seed, jitter=jitter if replicate else 0.0, replicate=replicate,
+                **amr_beds.measure(case, bed, reach))
 
 
 def pct(a, b, k):

@@ -35,18 +35,24 @@ MEASURES = [("width_um", "width [um]", "{:.1f}"), ("width_surface_um", "top-plan
             ("depth_um", "depth [um]", "{:.2f}")]
 
 
-def one(work, seed, reach):
-    """One run on the bed poured with `seed`: reach 0 is the uniform mesh, else the refined one."""
-    bed = os.path.join(work, f"seed{seed}", "bed", "bed.dump")
-    case = os.path.join(work, f"seed{seed}", "uniform" if reach == 0 else f"reach{reach:g}")
+def measure(case, bed, reach):
+    """The full floor's track on the bed dump `bed` in `case`: reach 0 is the uniform mesh, else the
+    refined one with that reach of the grains criterion; its row (reach, cells, MEASURES, CPU)."""
     scene.build(case, "full", cell=CELL, bed=bed, fluid_dt=FLUID_DT, refine=LEVELS if reach else 0, track=TRACK,
                 refine_interval=INTERVAL, courant=COURANT, grain_reach=reach or 1.0)
     scene.run(case)
     s = scene.analyse(case)
     meta = json.load(open(os.path.join(case, "scene.json")))
-    return dict(seed=seed, reach=reach, cells=fc.most_cells(case, np.prod(meta["n_cells"])),
+    return dict(reach=reach, cells=fc.most_cells(case, np.prod(meta["n_cells"])),
                 width_um=s["track_width_m"] * 1e6, width_surface_um=s["track_width_surface_m"] * 1e6,
                 depth_um=s["track_depth_m"] * 1e6, cpu_s=s["cpu_s"])
+
+
+def one(work, seed, reach):
+    """One run on the bed poured with `seed`: reach 0 is the uniform mesh, else the refined one."""
+    bed = os.path.join(work, f"seed{seed}", "bed", "bed.dump")
+    case = os.path.join(work, f"seed{seed}", "uniform" if reach == 0 else f"reach{reach:g}")
+    return dict(seed=seed, **measure(case, bed, reach))
 
 
 def pour(work, seed):
