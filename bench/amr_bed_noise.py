@@ -38,7 +38,7 @@ def jittered_bed(work, seed, jitter, replicate):
     bed = os.path.join(work, f"seed{seed}", "bed", "bed.dump")
     if replicate == 0:
         return bed
-    out = os.path.join(work, f"seed{seed}", f"jitter{replicate}", "bed.dump")
+    out = os.path.join(work, f"seed{seed}", f"jitter{jitter:g}-{replicate}", "bed.dump")
     if not os.path.exists(out):
         os.makedirs(os.path.dirname(out), exist_ok=True)
         lines = open(bed).read().splitlines()
@@ -59,7 +59,8 @@ def jittered_bed(work, seed, jitter, replicate):
 def one(work, seed, jitter, replicate, reach):
     """One run on copy `replicate` of the bed: reach 0 is the uniform mesh, else the refined one."""
     bed = jittered_bed(work, seed, jitter, replicate)
-    case = os.path.join(work, f"seed{seed}", f"r{replicate}-" + ("uniform" if reach == 0 else f"reach{reach:g}"))
+    copy = f"jitter{jitter:g}-{replicate}" if replicate else "r0"
+    case = os.path.join(work, f"seed{seed}", f"{copy}-" + ("uniform" if reach == 0 else f"reach{reach:g}"))
     return dict(seed=seed, jitter=jitter if replicate else 0.0, replicate=replicate,
                 **amr_beds.measure(case, bed, reach))
 
@@ -170,11 +171,16 @@ def main():
         ap.error("--jitter and --reach must be > 0, --replicates >= 0")
     os.makedirs(a.work, exist_ok=True)
     store = os.path.join(a.work, "results.json")
+
+    def mine(row, replicate):
+        """row belongs to copy `replicate` of this bed at this jitter"""
+        return (row["seed"] == a.seed and row["replicate"] == replicate
+                and row["jitter"] == (a.jitter if replicate else 0.0))
+
     rows = json.load(open(store)) if os.path.exists(store) else []
     if not a.from_results:
         # the uniform runs first: they take five times as long
-        todo = [(r, x) for x in (0.0, a.reach) for r in reps
-                if not any(y["seed"] == a.seed and y["replicate"] == r and y["reach"] == x for y in rows)]
+        todo = [(r, x) for x in (0.0, a.reach) for r in reps if not any(mine(y, r) and y["reach"] == x for y in rows)]
         for r in reps:
             jittered_bed(a.work, a.seed, a.jitter, r)
         with ProcessPoolExecutor(a.jobs) as pool:
@@ -182,7 +188,7 @@ def main():
             for row in runs:
                 rows.append(row)
                 json.dump(rows, open(store, "w"), indent=1)
-    rows = [r for r in rows if r["seed"] == a.seed and r["replicate"] in reps and r["reach"] in (0.0, a.reach)]
+    rows = [r for r in rows if any(mine(r, x) for x in reps) and r["reach"] in (0.0, a.reach)]
     write(rows, a.reach, a.jitter, a.out, a.seed)
     return 0
 
