@@ -6,8 +6,10 @@ copies of it with every grain centre moved at random by at most --jitter in x, y
 per --replicates seed; 0 is the bed as poured, whose dump holds the centres to 6 digits, about
 0.1 nm). The uniform runs against each other give the track's own sensitivity to a move of its
 bed that no measurement could see; the refined run against the uniform run of the same copy gives
-the refinement's error on each copy. Writes amr_bed_noise.md and amr_bed_noise.png next
-to this script (amr_bed_noise_seedN.* for another --seed than 4242).
+the refinement's error on each copy. Per pair of runs it also compares the width slice by slice
+and the volume of powder melted (rows run before these were kept are analysed again from their
+cases, if still there). Writes amr_bed_noise.md and amr_bed_noise.png next to this script
+(amr_bed_noise_seedN.* for another --seed than 4242).
 
     /usr/bin/python3 bench/amr_bed_noise.py [--seed 4242] [--jitter 1e-12] [--replicates 0,1,2]
                                             [--reach 1] [--work DIR] [--out DIR] [--jobs N]
@@ -56,13 +58,26 @@ def jittered_bed(work, seed, jitter, replicate):
     return out
 
 
+def case_dir(work, seed, jitter, replicate, reach):
+    copy = f"jitter{jitter:g}-{replicate}" if replicate else "r0"
+    return os.path.join(work, f"seed{seed}", f"{copy}-" + ("uniform" if reach == 0 else f"reach{reach:g}"))
+
+
 def one(work, seed, jitter, replicate, reach):
     """One run on copy `replicate` of the bed: reach 0 is the uniform mesh, else the refined one."""
     bed = jittered_bed(work, seed, jitter, replicate)
-    copy = f"jitter{jitter:g}-{replicate}" if replicate else "r0"
-    case = os.path.join(work, f"seed{seed}", f"{copy}-" + ("uniform" if reach == 0 else f"reach{reach:g}"))
     return dict(seed=seed, jitter=jitter if replicate else 0.0, replicate=replicate,
-                **amr_beds.measure(case, bed, reach))
+                **amr_beds.measure(case_dir(work, seed, jitter, replicate, reach), bed, reach))
+
+
+def add_slices_and_melt(work, row):
+    """A row run before the slices' widths and the melted powder were kept: analysed again from its case, if still
+    there; whether it was."""
+    case = case_dir(work, row["seed"], row["jitter"], row["replicate"], row["reach"])
+    if "melted_um3" not in row and os.path.exists(os.path.join(case, "scene.json")):
+        row.update(amr_beds.slices_and_melt(amr_beds.scene.analyse(case)))
+        return True
+    return False
 
 
 def pct(a, b, k):
@@ -129,18 +144,72 @@ def write(rows, reach, jitter, out, seed):
         lines.append("| refined mean vs uniform mean | | " + " | ".join(
             f"{(np.mean([r[k] for r in means[reach]]) / np.mean([r[k] for r in means[0.0]]) - 1) * 100:+.1f} %"
             for k, *_ in MEASURES) + " |")
+    lines += slice_section(rows, reach, jitter)
     open(os.path.join(out, stem + ".md"), "w").write("\n".join(lines) + "\n")
     plot(rows, reach, os.path.join(out, stem + ".png"))
 
 
+def slice_section(rows, reach, jitter):
+    """The width slice by slice: per pair of runs on one copy (refined vs uniform) and on two copies
+    (uniform vs uniform), the medians' and the slice means' difference, and the slices' differences."""
+    have = [r for r in rows if "melted_um3" in r]
+    uni = [r for r in have if r["reach"] == 0]
+    pairs = [(f"replicate {u['replicate']}: refined vs uniform", a, u) for u in uni for a in have
+             if a["reach"] == reach and a["replicate"] == u["replicate"]]
+    pairs += [(f"replicates {b['replicate']} vs {a['replicate']}: uniform vs uniform", b, a)
+              for a, b in itertools.combinations(uni, 2)]
+    if not pairs:
+        return []
+    w = [x for r in have for x in r["width_slices_um"]]
+    lines = ["", "## The width slice by slice, and the powder melted", "",
+             f"The width is the widest span at any height, and molten grains above the plate make it jump from slice "
+             f"to slice (x every 15 um): from {min(w):.0f} to {max(w):.0f} um within these tracks. The scene's "
+             "width is the median of the track's slices, and it can fall into a gap between them; the mean over "
+             "the slices cannot, though it moves with the grains too. Below, per pair of runs: both, and the "
+             "slices' differences (mean +- standard error, and their standard deviation; neighbouring slices share "
+             "grains, so the standard error is a lower bound). The powder melted is the volume of the grains gone "
+             "or shrunk by the end (from the particle dumps): whether a grain at the pool's edge is gone or left as "
+             "a remnant changes the count of melted grains, not this volume. Runs without these (replicate 0 "
+             "taken from another table, or its case gone) are left out.", "",
+             "| pair | medians [um] | median difference | slice means [um] | slice-mean difference "
+             "| slice by slice [um] | slices' sd [um] | powder melted [1e3 um^3] | melted difference |",
+             "|---|---|---|---|---|---|---|---|---|"]
+    diffs = {True: [], False: []}  # refined vs uniform, uniform vs uniform: (slice-mean, melted) in %
+    for name, a, b in pairs:
+        d = np.subtract(a["width_slices_um"], b["width_slices_um"])
+        ma, mb = np.mean(a["width_slices_um"]), np.mean(b["width_slices_um"])
+        lines.append(f"| {name} | {a['width_um']:.1f} / {b['width_um']:.1f} | {pct(a, b, 'width_um'):+.1f} % | "
+                     f"{ma:.1f} / {mb:.1f} | {(ma / mb - 1) * 100:+.1f} % | {d.mean():+.1f} +- "
+                     f"{d.std(ddof=1) / np.sqrt(len(d)):.1f} | {d.std(ddof=1):.1f} | {a['melted_um3'] / 1e3:.1f} / "
+                     f"{b['melted_um3'] / 1e3:.1f} | {pct(a, b, 'melted_um3'):+.2f} % |")
+        diffs[bool(a["reach"])].append(((ma / mb - 1) * 100, pct(a, b, "melted_um3")))
+
+    def summary(x, refined):
+        """refined vs uniform: mean +- standard error; uniform pairs (either order): root mean square"""
+        x = np.asarray(x)
+        largest = f"(largest {x[int(np.argmax(np.abs(x)))]:+.2f} %)"
+        if not refined:
+            return f"rms {np.sqrt(np.mean(x ** 2)):.2f} % {largest}"
+        sem = f" +- {np.std(x, ddof=1) / np.sqrt(len(x)):.2f}" if len(x) > 1 else ""
+        return f"{np.mean(x):+.2f}{sem} % {largest}"
+    lines += ["", "| over the pairs | slice-mean width | powder melted |", "|---|---|---|"]
+    for refined, name in ((True, "refined vs uniform, the same copy (mean +- standard error)"),
+                          (False, "uniform vs uniform (root mean square)")):
+        if diffs[refined]:
+            d = np.array(diffs[refined])
+            lines.append(f"| {name}, {len(d)} pairs | {summary(d[:, 0], refined)} | {summary(d[:, 1], refined)} |")
+    return lines
+
+
 def plot(rows, reach, png):
-    """Each measure per copy: the uniform and the refined run."""
+    """Each measure per copy: the uniform and the refined run (the slice-mean width too where every run has it)."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    fig, ax = plt.subplots(1, len(MEASURES), figsize=(4.3 * len(MEASURES), 3.6))
+    measures = MEASURES + [("width_mean_um", "slice-mean width [um]", "")] * all("width_mean_um" in r for r in rows)
+    fig, ax = plt.subplots(1, len(measures), figsize=(4.3 * len(measures), 3.6))
     reps = sorted({r["replicate"] for r in rows})
-    for k, (key, head, _) in enumerate(MEASURES):
+    for k, (key, head, _) in enumerate(measures):
         for reach_, mk, label in ((0.0, "o", "uniform 15 um"), (reach, "s", f"refined, diameters {reach:g}")):
             pts = [(reps.index(r["replicate"]), r[key]) for r in rows if r["reach"] == reach_]
             ax[k].plot([p[0] for p in pts], [p[1] for p in pts], mk, label=label)
@@ -188,6 +257,8 @@ def main():
             for row in runs:
                 rows.append(row)
                 json.dump(rows, open(store, "w"), indent=1)
+    if any([add_slices_and_melt(a.work, r) for r in rows]):
+        json.dump(rows, open(store, "w"), indent=1)
     rows = [r for r in rows if any(mine(r, x) for x in reps) and r["reach"] in (0.0, a.reach)]
     write(rows, a.reach, a.jitter, a.out, a.seed)
     return 0

@@ -45,7 +45,15 @@ def measure(case, bed, reach):
     meta = json.load(open(os.path.join(case, "scene.json")))
     return dict(reach=reach, cells=fc.most_cells(case, np.prod(meta["n_cells"])),
                 width_um=s["track_width_m"] * 1e6, width_surface_um=s["track_width_surface_m"] * 1e6,
-                depth_um=s["track_depth_m"] * 1e6, cpu_s=s["cpu_s"])
+                depth_um=s["track_depth_m"] * 1e6, cpu_s=s["cpu_s"], **slices_and_melt(s))
+
+
+def slices_and_melt(s):
+    """The width's mean over the track's slices, the slices' widths and the powder's melted volume,
+    from a scene summary."""
+    return dict(width_mean_um=s["track_width_mean_m"] * 1e6,
+                width_slices_um=[w * 1e6 for w in s["track_width_slices_m"]],
+                melted_um3=s["powder_melted_volume_m3"] * 1e18)
 
 
 def one(work, seed, reach):
