@@ -144,14 +144,14 @@ def write(rows, reach, jitter, out, seed):
         lines.append("| refined mean vs uniform mean | | " + " | ".join(
             f"{(np.mean([r[k] for r in means[reach]]) / np.mean([r[k] for r in means[0.0]]) - 1) * 100:+.1f} %"
             for k, *_ in MEASURES) + " |")
-    lines += slice_section(rows, reach, jitter)
+    lines += slice_section(rows, reach)
     open(os.path.join(out, stem + ".md"), "w").write("\n".join(lines) + "\n")
     plot(rows, reach, os.path.join(out, stem + ".png"))
 
 
-def slice_section(rows, reach, jitter):
-    """The width slice by slice: per pair of runs on one copy (refined vs uniform) and on two copies
-    (uniform vs uniform), the medians' and the slice means' difference, and the slices' differences."""
+def slice_section(rows, reach):
+    """Per pair of runs on one copy (refined vs uniform) and on two copies (uniform vs uniform): the
+    medians' and the slice means' difference, the slices' differences and the powder melted."""
     have = [r for r in rows if "melted_um3" in r]
     uni = [r for r in have if r["reach"] == 0]
     pairs = [(f"replicate {u['replicate']}: refined vs uniform", a, u) for u in uni for a in have
@@ -206,7 +206,9 @@ def plot(rows, reach, png):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    measures = MEASURES + [("width_mean_um", "slice-mean width [um]", "")] * all("width_mean_um" in r for r in rows)
+    measures = list(MEASURES)
+    if all("width_mean_um" in r for r in rows):
+        measures.append(("width_mean_um", "slice-mean width [um]", ""))
     fig, ax = plt.subplots(1, len(measures), figsize=(4.3 * len(measures), 3.6))
     reps = sorted({r["replicate"] for r in rows})
     for k, (key, head, _) in enumerate(measures):
