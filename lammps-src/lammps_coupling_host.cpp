@@ -82,14 +82,16 @@ template <typename Call> void lammps_call(MPI_Comm comm, int me, const std::stri
   } catch (const std::exception &e) {
     std::string what = e.what();
     const bool from_lammps = what.rfind("ERROR", 0) == 0;
+    // error->one throws on its rank alone, which may abort before rank 0 has written: it names
+    // the command itself, as LAMMPS's own error->one does
+    const bool one_rank = dynamic_cast<const LAMMPSAbortException *>(&e) != nullptr;
     while (!what.empty() && what.back() == '\n') what.pop_back();
     if (!from_lammps || me != 0) std::fprintf(stderr, "%s%s\n", from_lammps ? "" : "ERROR: ", what.c_str());
-    if (me == 0) std::fprintf(stderr, "Last command: %s\n", command.c_str());
+    if (me == 0 || one_rank) std::fprintf(stderr, "Last command: %s\n", command.c_str());
     std::fflush(stdout);
     std::fflush(stderr);
     // error->all throws on every rank: all have written their lines before any rank aborts
-    const auto *collective = dynamic_cast<const LAMMPSException *>(&e);
-    if (collective && !dynamic_cast<const LAMMPSAbortException *>(&e)) MPI_Barrier(comm);
+    if (!one_rank && dynamic_cast<const LAMMPSException *>(&e)) MPI_Barrier(comm);
     MPI_Abort(comm, 1);
   }
 }
