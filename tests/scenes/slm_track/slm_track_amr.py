@@ -20,8 +20,7 @@ Checks:
 - track width and depth on the refined mesh vs the uniform one (the issue's 2 %; the depth is an
   expected failure: it reads 1.4-3.6 % over, moved by changes in the last bits, DEPTH_OVER_LIMIT),
   the width's mean over the track's slices (no gap between slices to fall into, as their median
-  can: bench/amr_bed_noise.md) and
-  the volume of powder melted;
+  can: bench/amr_bed_noise.md) and the volume of powder melted;
 - every mesh change conserves metal and enthalpy (1e-12);
 and reports both runs' cells and solver CPU (bench/amr.md has the cost; on this 0.3 mm floor the
 refined region holds most of the cells).
