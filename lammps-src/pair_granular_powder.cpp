@@ -93,41 +93,48 @@ void PairGranularPowder::coeff(int narg, char **arg)
   // hertz/material E e nu ... damping tsuji|tsuji/alpha: find e and the damping form,
   // let the stock parser do the rest, then overwrite alpha with the exact value.
   int mode = 0;  // 0 none, 1 tsuji (exact e), 2 tsuji/alpha
-  double value = 0.0;
+  double e_value = 0.0, alpha_value = 0.0;
   // e depends on alpha alone for a Hertz contact; DMT adds a constant pull and damps as Hertz
   // (stepped damping too), JKR damps with its own contact radius (the continuous alpha only)
   enum { OTHER, HERTZ_LIKE, JKR_MODEL } model = OTHER;
   bool limited = false;
+  // the words are read at their places in arg, in any order; the stock parser gets a copy
+  // with tsuji/alpha's value taken out
   std::vector<std::string> copy(arg, arg + narg);
+  int alpha_at = -1;
   for (int i = 2; i < narg; i++) {
-    if (((copy[i] == "hertz/material" || copy[i] == "dmt" || copy[i] == "jkr") && i + 3 < narg) ||
-        (copy[i] == "hertz" && i + 2 < narg)) {
-      value = utils::numeric(FLERR, arg[i + 2], false, lmp);
-      model = copy[i] == "jkr" ? JKR_MODEL : HERTZ_LIKE;
+    const std::string word = arg[i];
+    if (((word == "hertz/material" || word == "dmt" || word == "jkr") && i + 3 < narg) ||
+        (word == "hertz" && i + 2 < narg)) {
+      e_value = utils::numeric(FLERR, arg[i + 2], false, lmp);
+      model = word == "jkr" ? JKR_MODEL : HERTZ_LIKE;
     }
-    if ((copy[i] == "hertz/material" || copy[i] == "dmt" || copy[i] == "jkr") && i + 3 < narg) {
+    if ((word == "hertz/material" || word == "dmt" || word == "jkr") && i + 3 < narg) {
       // the material the contact law and fix powder/dt's contact time are computed from
       const double E = utils::numeric(FLERR, arg[i + 1], false, lmp);
       const double nu = utils::numeric(FLERR, arg[i + 3], false, lmp);
-      if (!(E > 0.0)) error->all(FLERR, "Illegal pair_coeff command: {} Young's modulus E must be > 0", copy[i]);
+      if (!(E > 0.0)) error->all(FLERR, "Illegal pair_coeff command: {} Young's modulus E must be > 0", word);
       if (!(nu > -1.0 && nu <= 0.5))
-        error->all(FLERR, "Illegal pair_coeff command: {} Poisson's ratio {} must lie in (-1,0.5]", copy[i], nu);
+        error->all(FLERR, "Illegal pair_coeff command: {} Poisson's ratio {} must lie in (-1,0.5]", word, nu);
     }
-    if (copy[i] == "hooke") model = OTHER;
-    if (copy[i] == "limit_damping") limited = true;
-    if (copy[i] == "damping" && i + 1 < narg) {
-      if (copy[i + 1] == "tsuji")
+    if (word == "hooke") model = OTHER;
+    if (word == "limit_damping") limited = true;
+    if (word == "damping" && i + 1 < narg) {
+      if (strcmp(arg[i + 1], "tsuji") == 0)
         mode = 1;
-      else if (copy[i + 1] == "tsuji/alpha") {
+      else if (strcmp(arg[i + 1], "tsuji/alpha") == 0) {
         if (i + 2 >= narg) error->all(FLERR, "Illegal pair_coeff command: damping tsuji/alpha needs a value");
+        if (alpha_at >= 0) error->all(FLERR, "Illegal pair_coeff command: damping given twice");
         mode = 2;
-        value = utils::numeric(FLERR, arg[i + 2], false, lmp);
-        if (value < 0.0) error->all(FLERR, "Illegal pair_coeff command: tsuji/alpha must be >= 0");
+        alpha_value = utils::numeric(FLERR, arg[i + 2], false, lmp);
+        if (alpha_value < 0.0) error->all(FLERR, "Illegal pair_coeff command: tsuji/alpha must be >= 0");
         copy[i + 1] = "tsuji";
-        copy.erase(copy.begin() + i + 2);
+        alpha_at = i + 2;
       }
     }
   }
+  if (alpha_at >= 0) copy.erase(copy.begin() + alpha_at);
+  const double value = mode == 2 ? alpha_value : e_value;
   if (mode == 1 && model == OTHER)
     error->all(FLERR, "Illegal pair_coeff command: damping tsuji needs normal model hertz/material, hertz, dmt "
                       "or jkr (use tsuji/alpha otherwise)");
@@ -137,7 +144,7 @@ void PairGranularPowder::coeff(int narg, char **arg)
   // tangential, rolling and twisting models only: with none of them it stops with a bogus
   // "Neighbor history overflow"
   bool history = false;
-  for (int i = 2; i + 1 < narg; i++) {
+  for (std::size_t i = 2; i + 1 < copy.size(); i++) {
     const std::string &next = copy[i + 1];
     if (copy[i] == "tangential") history = history || next != "linear_nohistory";
     if (copy[i] == "rolling" || copy[i] == "twisting") history = history || next != "none";

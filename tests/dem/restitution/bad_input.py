@@ -3,8 +3,9 @@
 history model is refused where LAMMPS has no slot for its contact flag (29 Sep 2021) and runs where
 LAMMPS keeps it itself (the 2023+ GRANULAR API)."""
 import sys
-from meltdem.testing.lammps_run import check_errors, lammps_version, run
-from meltdem.testing.report import report
+import os
+from meltdem.testing.lammps_run import check_errors, lammps_version, printed_value, run
+from meltdem.testing.report import check_relative, report
 
 T = "dem.restitution.bad_input"
 HEAD = """units {units}
@@ -26,6 +27,9 @@ cases = [
      "tsuji/alpha must be >= 0"),
     ("alpha missing", "si", "pair_coeff * * hertz/material 200e9 0.5 0.3 damping tsuji/alpha\n",
      "damping tsuji/alpha needs a value"),
+    ("tsuji/alpha twice", "si",
+     "pair_coeff * * hertz/material 200e9 0.5 0.3 damping tsuji/alpha 1 damping tsuji/alpha 2\n",
+     "damping given twice"),
     ("tsuji with hooke", "si",
      "pair_coeff * * hooke 1e5 0.5 damping tsuji tangential linear_nohistory 1.0 0.0\n",
      "damping tsuji needs normal model hertz/material, hertz, dmt"),
@@ -58,4 +62,15 @@ if NEW_GRANULAR_API:
         print(out[-2000:])
     ok &= report(T, "jkr without a history model (LAMMPS >= 2023 keeps the contact flag itself): 10 steps",
                  "runs" if ran else f"exit code {rc}", "runs", "exact", ran)
+
+# the words of pair_coeff in any order: tsuji/alpha's value before the normal model is the same alpha
+# (coupling::restitution_for_alpha(1.5) = 0.05833, the head-on collision of restitution.py)
+with open(os.path.join(os.path.dirname(os.path.abspath(__file__)), "in.head_on")) as f:
+    HEAD_ON = f.read()
+ORDERS = (("normal model first", "hertz/material 200e9 0.5 0.3 damping tsuji/alpha 1.5 tangential"),
+          ("tsuji/alpha first", "damping tsuji/alpha 1.5 hertz/material 200e9 0.5 0.3 tangential"))
+for what, words in ORDERS:
+    text = HEAD_ON.replace("hertz/material 200e9 ${e} 0.3 damping ${damp} tangential", words)
+    _, out = run(text, variables=dict(v=10, style="granular/powder", dt=1e-10, n=3000))
+    ok &= check_relative(T, f"e for tsuji/alpha 1.5 at 20 m/s, {what}", printed_value(out, "RESULT"), 0.0583279, 0.01)
 sys.exit(0 if ok else 1)
