@@ -108,6 +108,9 @@ def main(argv=None):
     if getattr(a, "np", 1) < 1:
         print("meltdem: --np must be >= 1", file=sys.stderr)
         return 2
+    if getattr(a, "checkpoint_every", None) is not None and a.checkpoint_every < 1:
+        print("meltdem: --checkpoint-every must be >= 1 (steps between two checkpoints)", file=sys.stderr)
+        return 2
     try:
         return a.func(a)
     except StepError as e:

@@ -477,6 +477,8 @@ def run_dem(case, np_, resume, checkpoint_every=None):
             raise StepError(f"cannot resume: no complete checkpoint in {os.path.join(case, RESTART_DIR)} (the run "
                             f"was stopped before its first checkpoint, or was not started by meltdem run)")
         say(f"resuming from the checkpoint at step {steps[-1]} ({RESTART_DIR}/{steps[-1]})")
+        if checkpoint_every is not None:
+            say("--checkpoint-every is not used on --resume: the run keeps the interval it was started with")
         for log in ("log.lammps", "out.lammps"):
             keep_log(case, log)
     else:
@@ -579,6 +581,9 @@ def run(target, case=None, np_=1, resume=False, size="ci", check_first=True, ana
         if resume and not os.path.isdir(case):
             raise StepError(f"cannot resume {name}: no case folder {case} (run it first, or give --case DIR)")
     else:
+        if case and os.path.abspath(case) != os.path.abspath(target):
+            raise StepError(f"--case applies to example names only: '{target}' is a case folder and runs where it "
+                            f"is; copy it to {case} and run that, or leave out --case")
         case = os.path.abspath(target)
     if any(c.isspace() for c in case):
         raise StepError(f"the case path '{case}' has white space, which OpenFOAM's file names cannot hold; "
@@ -628,6 +633,9 @@ def _run(name, target, case, lock, np_, resume, size, check_first, analyse, chec
                                 f"see: meltdem check {case}")
             say(f"check: {len(rep.checked)} item(s) OK")
         if kind == "foam":
+            if checkpoint_every is not None:
+                say("--checkpoint-every applies to DEM-only cases: this case checkpoints at the write times "
+                    "of its system/controlDict")
             run_foam(case, np_, resume, rebuilt=bool(name) and not resume)
         else:
             run_dem(case, np_, resume, checkpoint_every)

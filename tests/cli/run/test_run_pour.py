@@ -2,7 +2,8 @@
 runs it: exit 0, log.lammps complete (the run's 100000 steps, 300 grains), the progress line
 printed (non-tty: the first and the last, `t = ... / 1.00e-03 s (100 %) ... steps/s  ETA`).
 A broken copy (an unknown command) stops with exit 1 and one line naming log.lammps and the
-LAMMPS error; a bad case (no input at all) with the reason."""
+LAMMPS error; a bad case (no input at all) with the reason; --case given with a case folder
+(which runs where it is) and --checkpoint-every 0 stop before anything runs."""
 import os
 import re
 import shutil
@@ -49,6 +50,17 @@ print(out, err)
 ok &= check_absolute(T, "folder that is no case: exit code", rc, 1, 0)
 ok &= check_absolute(T, "folder that is no case: reason given",
                      int("not a case" in err and "system/controlDict" in err), 1, 0)
+# options that would be dropped stop before anything runs
+elsewhere = os.path.join(work, "elsewhere")
+rc, out, err = meltdem("run", case, "--case", elsewhere, "--no-analyse")
+print(out, err)
+ok &= check_absolute(T, "case folder with --case: exit code", rc, 1, 0)
+ok &= check_absolute(T, "case folder with --case: reason given, nothing made there",
+                     int("--case applies to example names only" in err and not os.path.exists(elsewhere)), 1, 0)
+rc, out, err = meltdem("run", case, "--checkpoint-every", "0")
+print(out, err)
+ok &= check_absolute(T, "--checkpoint-every 0: exit code", rc, 2, 0)
+ok &= check_absolute(T, "--checkpoint-every 0: reason given", int("--checkpoint-every must be >= 1" in err), 1, 0)
 if ok:
     shutil.rmtree(work, ignore_errors=True)
 else:
