@@ -29,6 +29,12 @@ laserRefinement::laserRefinement
             << "refinement criterion '" << name << "' (laser) needs physics { laser on; }"
             << exit(FatalIOError);
     }
+    if (!(radii_ > 0))
+    {
+        FatalIOErrorInFunction(dict)
+            << "refinement criterion '" << name << "': radii " << radii_
+            << " must be positive (the footprint's reach in beam radii)" << exit(FatalIOError);
+    }
     if (lookAhead_ < 0)
     {
         FatalIOErrorInFunction(dict)

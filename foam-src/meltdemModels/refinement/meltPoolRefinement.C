@@ -28,6 +28,12 @@ meltPoolRefinement::meltPoolRefinement
             << "refinement criterion '" << name << "' (meltPool) needs physics { energy on; }"
             << exit(FatalIOError);
     }
+    if (!(minAlpha_ < 1))
+    {
+        FatalIOErrorInFunction(dict)
+            << "refinement criterion '" << name << "': minAlpha " << minAlpha_
+            << " must be below 1 (no cell's metal fraction exceeds 1)" << exit(FatalIOError);
+    }
     Tsolidus_ = props.subDict("metal").get<scalar>("Tsolidus");
     namedField("T", "T");
     namedField("liquidFraction", "liquidFraction");

@@ -32,6 +32,12 @@ particlesRefinement::particlesRefinement
             << exit(FatalIOError);
     }
     const wordList near(dict.getOrDefault<wordList>("near", wordList{"pool", "beam"}));
+    if (near.empty())
+    {
+        FatalIOErrorInFunction(dict)
+            << "refinement criterion '" << name << "': near is empty (give pool, beam or anywhere)"
+            << exit(FatalIOError);
+    }
     for (const word& w : near)
     {
         if (w == "pool") nearPool_ = true;

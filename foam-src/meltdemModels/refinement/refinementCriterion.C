@@ -42,7 +42,20 @@ autoPtr<refinementCriterion> refinementCriterion::New
             << "'; known types: " << dictionaryConstructorTablePtr_->sortedToc()
             << exit(FatalIOError);
     }
-    return cstrIter()(name, dict, mesh, maxLevel);
+    autoPtr<refinementCriterion> criterion(cstrIter()(name, dict, mesh, maxLevel));
+    wordList known(criterion->entries());
+    known.append(word("type"));
+    known.append(word("level"));
+    for (const word& key : dict.toc())
+    {
+        if (!known.found(key))
+        {
+            FatalIOErrorInFunction(dict)
+                << "refinement criterion '" << name << "' (" << type << "): unknown entry '" << key
+                << "'; known entries: " << known << exit(FatalIOError);
+        }
+    }
+    return criterion;
 }
 
 

@@ -5,8 +5,9 @@ A tiny closed 3D box of 4 x 2 x 2 hexahedra (metal below, gas above, flow and en
 constant/meltdemProperties refinement{} runs three steps cleanly, refining at its interface;
 then it is broken one thing at a time: a 2D mesh (empty front and back), a mesh of prisms, an
 unknown criterion type, a field criterion on a field the run lacks, levels out of range or beyond
-the label range, an unknown entry, a user-written dynamicMeshDict next to refinement{}, OpenFOAM's
-own dynamicRefineFvMesh without refinement{}, criteria whose switch is off, a corrected
+the label range, an unknown entry of refinement{} or of a criterion, a meltPool minAlpha of 1 or
+more, a user-written dynamicMeshDict next to refinement{}, OpenFOAM's own dynamicRefineFvMesh
+without refinement{}, criteria whose switch is off, a corrected
 snGrad(alpha.metal) or snGrad(rho) (surface and gravity forces on split faces). Each variant must
 exit non-zero without a signal, print a FOAM FATAL (IO) ERROR naming the entry, and take no step.
 usage: amr_bad_input.py [--keep]
@@ -51,6 +52,10 @@ VARIANTS = {
     "criterion_above_max_level": ("criterion level 3 above maxLevel 1", refinement("interface { level 3; }"),
                                   "box", {}, ["level 3", "maxLevel"]),
     "unknown_entry": ("refinement { maxLevl 1; }", refinement(extra="    maxLevl 2;\n"), "box", {}, ["maxLevl"]),
+    "unknown_criterion_entry": ("interface { levl 1; }", refinement("interface { levl 1; }"), "box", {},
+                                ["levl", "interface", "margin"]),
+    "melt_pool_min_alpha": ("meltPool { minAlpha 1.5; }", refinement("meltPool { level 1; minAlpha 1.5; }"), "box",
+                            {}, ["minAlpha", "below 1"]),
     "no_criteria": ("refinement without criteria", "refinement { maxLevel 1; }\n", "box", {}, ["criteria"]),
     "user_mesh_dict": ("a user dynamicMeshDict next to refinement{}", refinement(), "box+dict", {},
                        ["dynamicMeshDict", "refinement"]),
