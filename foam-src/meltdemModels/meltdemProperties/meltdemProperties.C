@@ -123,6 +123,16 @@ meltdemProperties::meltdemProperties(const fvMesh& mesh)
         if (found("energyControls"))
         {
             const dictionary& ec = subDict("energyControls");
+            static const wordList known{"nCorrectors", "tolerance", "maxThermalCo"};
+            for (const word& key : ec.toc())
+            {
+                if (!known.found(key))
+                {
+                    FatalIOErrorInFunction(ec)
+                        << "unknown entry '" << key << "' in energyControls; known entries: "
+                        << known << exit(FatalIOError);
+                }
+            }
             nEnergyCorr_ = ec.getOrDefault<label>("nCorrectors", nEnergyCorr_);
             energyTolerance_ = ec.getOrDefault<scalar>("tolerance", energyTolerance_);
             maxThermalCo_ = ec.getOrDefault<scalar>("maxThermalCo", maxThermalCo_);
@@ -138,6 +148,11 @@ meltdemProperties::meltdemProperties(const fvMesh& mesh)
     else
     {
         isothermalT_ = getOrDefault<scalar>("isothermalTemperature", isothermalT_);
+        if (!(isothermalT_ > 0))
+        {
+            FatalIOErrorInFunction(*this)
+                << "isothermalTemperature must be > 0 K, not " << isothermalT_ << exit(FatalIOError);
+        }
     }
 }
 

@@ -122,6 +122,11 @@ VARIANTS = {
         lambda c: edit(c, PROPS, "demStepsPerFluidStep auto;",
                        "demStepsPerFluidStep auto;\n    heatExchange explicit;"),
         ["heatExchange", "twoBody or implicit", "explicit"]),
+    "particles_unknown_entry": (
+        "heatexchange implicit (a misspelt entry of particles)",
+        lambda c: edit(c, PROPS, "demStepsPerFluidStep auto;",
+                       "demStepsPerFluidStep auto;\n    heatexchange implicit;"),
+        ["unknown entry 'heatexchange'", "particles"]),
     "no_melt_fix": (
         "no fix powder/melt in the LAMMPS input",
         lambda c: (edit(c, LMP, MELT_FIX, ""), drop_lines(c, LMP, r"^thermo_style .*\n")),

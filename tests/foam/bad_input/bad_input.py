@@ -68,6 +68,10 @@ VARIANTS = {
                         "darcy { b 1e-3; }\n", ["'C'"]),
     "negative_thermal_courant": ("energyControls { maxThermalCo -1; }", {}, METAL, GAS,
                                  "energyControls { maxThermalCo -1; }\n", ["maxThermalCo"]),
+    "energy_controls_unknown_entry": ("energyControls { nCorrector 50; } (misspelt)", {}, METAL, GAS,
+                                      "energyControls { nCorrector 50; }\n", ["nCorrector", "energyControls"]),
+    "isothermal_temperature_zero": ("isothermalTemperature 0 with energy off", {"energy": "off"}, METAL, GAS,
+                                    "isothermalTemperature 0;\n", ["isothermalTemperature"]),
 }
 
 
