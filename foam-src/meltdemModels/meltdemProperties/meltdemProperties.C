@@ -55,6 +55,29 @@ meltdemProperties::meltdemProperties(const fvMesh& mesh)
     const dictionary& ph = subDict("physics");
     // the solver's own switches, and every registered physics term (physicsTerm.H)
     const auto& table = physicsTerm::infoTable();
+    // the top level: the solver's own entries and every term's sub-dictionaries, so that a
+    // misspelt block (refinment, energyControl) stops instead of switching its part off
+    wordList blocks
+    {
+        "FoamFile", "physics", "metal", "gas", "energyControls", "isothermalTemperature", "particles",
+        "refinement"
+    };
+    for (const auto& t : table)
+    {
+        for (const auto& d : t.second.entries)
+        {
+            if (!blocks.found(word(d.first))) blocks.append(word(d.first));
+        }
+    }
+    for (const word& key : toc())
+    {
+        if (!blocks.found(key))
+        {
+            FatalIOErrorInFunction(*this)
+                << "unknown entry '" << key << "' in meltdemProperties; known entries: " << blocks
+                << exit(FatalIOError);
+        }
+    }
     wordList known(coreSwitches());
     for (const auto& t : table) known.append(word(t.first));
     for (const word& key : ph.toc())
