@@ -52,6 +52,20 @@ Foam::meltdem::evaporationModel::evaporationModel
     vapourJet_(dict.getOrDefault<bool>("vapourJet", false)),
     spreadLength_(dict.getOrDefault<scalar>("vapourSpread", 0))
 {
+    static const wordList known
+    {
+        "pAmbient", "CT", "Tboil", "hv", "cp", "Th0", "CM", "stickingCoefficient", "massLoss",
+        "vapourJet", "vapourSpread"
+    };
+    for (const word& key : dict.toc())
+    {
+        if (!known.found(key))
+        {
+            FatalIOErrorInFunction(dict)
+                << "unknown entry '" << key << "' in " << dict.name() << "; known entries: " << known
+                << exit(FatalIOError);
+        }
+    }
     if (spreadLength_ < 0)
     {
         FatalIOErrorInFunction(dict)

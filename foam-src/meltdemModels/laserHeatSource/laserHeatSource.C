@@ -194,6 +194,33 @@ Foam::meltdem::laserHeatSource::laserHeatSource
         }
     }
 
+    // every entry must be one the beam's path mode and absorptivity model read: a misspelt
+    // velocity would leave the beam standing, a misspelt tOff leave it on
+    wordList known
+    {
+        "power", "absorptivity", "absorptivityModel", "radius", "direction", "tOn", "tOff",
+        "tStart", "tStop", "minHitFraction", "timeAveraged", "scaleByHitFraction", "distribution"
+    };
+    const auto add = [&known](std::initializer_list<const char*> keys)
+    {
+        for (const char* k : keys) known.append(word(k));
+    };
+    if (linearAbsorptivity_) add({"dAbsorptivitydT", "Tabsorptivity", "absorptivityMin", "absorptivityMax"});
+    if (tracks_) add({"tracks", "speed", "returnTime"});
+    else if (polyline_) add({"path", "speed"});
+    else add({"position", "velocity"});
+    for (const word& key : dict.toc())
+    {
+        if (!known.found(key))
+        {
+            FatalIOErrorInFunction(dict)
+                << "unknown entry '" << key << "' in " << dict.name() << " ("
+                << (tracks_ ? "tracks" : polyline_ ? "path" : "position") << " mode, absorptivityModel "
+                << (linearAbsorptivity_ ? "linear" : "constant") << "); known entries: " << known
+                << exit(FatalIOError);
+        }
+    }
+
     Info<< "laserHeatSource: " << (alphaWeighted_ ? "alphaWeighted" : "gradAlpha")
         << " distribution, P = " << power_ << " W, eta = " << absorptivity_
         << ", 1/e^2 radius = " << radius_ << " m, direction " << direction_

@@ -42,6 +42,19 @@ Foam::meltdem::surfaceForces::surfaceForces
     nSmooth_(dict.getOrDefault<label>("nSmooth", 0)),
     marangoniDensityScaled_(dict.getOrDefault<bool>("marangoniDensityScaled", false))
 {
+    static const wordList known
+    {
+        "sigma0", "dSigmadT", "Tsigma0", "sigmaMin", "nSmooth", "marangoniDensityScaled"
+    };
+    for (const word& key : dict.toc())
+    {
+        if (!known.found(key))
+        {
+            FatalIOErrorInFunction(dict)
+                << "unknown entry '" << key << "' in surfaceTension; known entries: " << known
+                << exit(FatalIOError);
+        }
+    }
     if (nSmooth_ < 0)
     {
         FatalIOErrorInFunction(dict)

@@ -54,6 +54,20 @@ VARIANTS = {
                                    METAL, GAS, "laser { power 10; absorptivity 0.5; radius 5e-5; direction (0 -1 0); "
                                    "position (0.5e-3 0.2e-3 1e-4); absorptivityModel linear; Tabsorptivity 1700; }\n",
                                    ["dAbsorptivitydT"]),
+    "laser_misspelt_velocity": ("laser { velocty (0.5 0 0); } (misspelt: the beam would stand)", {"laser": "on"},
+                                METAL, GAS, "laser { power 10; absorptivity 0.5; radius 5e-5; direction (0 -1 0); "
+                                "position (0.5e-3 0.2e-3 1e-4); velocty (0.5 0 0); tStop 1e-4; }\n",
+                                ["velocty", "position mode"]),
+    "laser_slope_without_linear": ("laser { dAbsorptivitydT 2e-4; } with the constant model", {"laser": "on"},
+                                   METAL, GAS, "laser { power 10; absorptivity 0.5; radius 5e-5; direction (0 -1 0); "
+                                   "position (0.5e-3 0.2e-3 1e-4); dAbsorptivitydT 2e-4; Tabsorptivity 1700; }\n",
+                                   ["dAbsorptivitydT", "constant"]),
+    "surface_tension_misspelt_entry": ("surfaceTension nsmooth 2 (misspelt; merged into the written block)",
+                                       {"flow": "on", "surfaceTension": "on"}, METAL, GAS,
+                                       "surfaceTension { nsmooth 2; }\n", ["nsmooth", "surfaceTension"]),
+    "evaporation_misspelt_mass_loss": ("evaporation massloss on (misspelt)", {"evaporation": "on"}, METAL, GAS,
+                                       "evaporation { pAmbient 1e5; CT 5e4; Tboil 3000; hv 6.583e6; cp 965; "
+                                       "Th0 663.731; CM 1.1095e-3; massloss on; }\n", ["massloss", "evaporation"]),
     "negative_boiling_point": ("evaporation Tboil = -3000", {"evaporation": "on"}, METAL, GAS,
                                "evaporation { pAmbient 1e5; CT 5e4; Tboil -3000; hv 6.583e6; cp 965; "
                                "Th0 663.731; CM 1.1095e-3; }\n", ["Tboil"]),
