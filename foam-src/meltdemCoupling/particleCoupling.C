@@ -1,4 +1,5 @@
 #include "particleCoupling.H"
+#include "meltdemProperties.H"
 
 #include "Time.H"
 
@@ -70,19 +71,11 @@ Foam::meltdem::particleCoupling::particleCoupling
             << "physics { particles on; } needs the sub-dictionary 'particles'"
             << " (lammpsInput, distribution)" << exit(FatalIOError);
     }
-    static const wordList known
-    {
-        "lammpsInput", "distribution", "demStepsPerFluidStep", "lammpsLog", "laserShadow", "heatExchange"
-    };
-    for (const word& key : dict_.toc())
-    {
-        if (!known.found(key))
-        {
-            FatalIOErrorInFunction(dict_)
-                << "unknown entry '" << key << "' in particles; known entries: " << known
-                << exit(FatalIOError);
-        }
-    }
+    meltdemProperties::checkEntries
+    (
+        dict_,
+        {"lammpsInput", "distribution", "demStepsPerFluidStep", "lammpsLog", "laserShadow", "heatExchange"}
+    );
     try
     {
         model_ = mc::parse_distribution_model(requiredWord(dict_, "distribution"));

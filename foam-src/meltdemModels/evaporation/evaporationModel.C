@@ -3,6 +3,7 @@
 \*---------------------------------------------------------------------------*/
 
 #include "evaporationModel.H"
+#include "meltdemProperties.H"
 #include "fvc.H"
 #include "fvm.H"
 #include "fvMatrices.H"
@@ -52,20 +53,14 @@ Foam::meltdem::evaporationModel::evaporationModel
     vapourJet_(dict.getOrDefault<bool>("vapourJet", false)),
     spreadLength_(dict.getOrDefault<scalar>("vapourSpread", 0))
 {
-    static const wordList known
-    {
-        "pAmbient", "CT", "Tboil", "hv", "cp", "Th0", "CM", "stickingCoefficient", "massLoss",
-        "vapourJet", "vapourSpread"
-    };
-    for (const word& key : dict.toc())
-    {
-        if (!known.found(key))
+    meltdemProperties::checkEntries
+    (
+        dict,
         {
-            FatalIOErrorInFunction(dict)
-                << "unknown entry '" << key << "' in " << dict.name() << "; known entries: " << known
-                << exit(FatalIOError);
+            "pAmbient", "CT", "Tboil", "hv", "cp", "Th0", "CM", "stickingCoefficient", "massLoss",
+            "vapourJet", "vapourSpread"
         }
-    }
+    );
     if (spreadLength_ < 0)
     {
         FatalIOErrorInFunction(dict)

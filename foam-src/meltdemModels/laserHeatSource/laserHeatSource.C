@@ -3,6 +3,7 @@
 \*---------------------------------------------------------------------------*/
 
 #include "laserHeatSource.H"
+#include "meltdemProperties.H"
 #include "fvc.H"
 #include "mathematicalConstants.H"
 
@@ -209,17 +210,12 @@ Foam::meltdem::laserHeatSource::laserHeatSource
     if (tracks_) add({"tracks", "speed", "returnTime"});
     else if (polyline_) add({"path", "speed"});
     else add({"position", "velocity"});
-    for (const word& key : dict.toc())
-    {
-        if (!known.found(key))
-        {
-            FatalIOErrorInFunction(dict)
-                << "unknown entry '" << key << "' in " << dict.name() << " ("
-                << (tracks_ ? "tracks" : polyline_ ? "path" : "position") << " mode, absorptivityModel "
-                << (linearAbsorptivity_ ? "linear" : "constant") << "); known entries: " << known
-                << exit(FatalIOError);
-        }
-    }
+    meltdemProperties::checkEntries
+    (
+        dict, known,
+        string(tracks_ ? "tracks" : polyline_ ? "path" : "position") + " mode, absorptivityModel "
+      + (linearAbsorptivity_ ? "linear" : "constant")
+    );
 
     Info<< "laserHeatSource: " << (alphaWeighted_ ? "alphaWeighted" : "gradAlpha")
         << " distribution, P = " << power_ << " W, eta = " << absorptivity_

@@ -26,6 +26,21 @@ scalar meltdemProperties::readPositive(const dictionary& d, const word& key, boo
 }
 
 
+void meltdemProperties::checkEntries(const dictionary& d, const wordList& known, const string& what)
+{
+    for (const word& key : d.toc())
+    {
+        if (!known.found(key))
+        {
+            FatalIOErrorInFunction(d)
+                << "unknown entry '" << key << "' in " << d.name().c_str()
+                << (what.empty() ? "" : " (" + what + ")").c_str() << "; known entries: " << known
+                << exit(FatalIOError);
+        }
+    }
+}
+
+
 meltdemProperties::meltdemProperties(const fvMesh& mesh)
 :
     IOdictionary
@@ -69,15 +84,7 @@ meltdemProperties::meltdemProperties(const fvMesh& mesh)
             if (!blocks.found(word(d.first))) blocks.append(word(d.first));
         }
     }
-    for (const word& key : toc())
-    {
-        if (!blocks.found(key))
-        {
-            FatalIOErrorInFunction(*this)
-                << "unknown entry '" << key << "' in meltdemProperties; known entries: " << blocks
-                << exit(FatalIOError);
-        }
-    }
+    checkEntries(*this, blocks);
     wordList known(coreSwitches());
     for (const auto& t : table) known.append(word(t.first));
     for (const word& key : ph.toc())
@@ -146,16 +153,7 @@ meltdemProperties::meltdemProperties(const fvMesh& mesh)
         if (found("energyControls"))
         {
             const dictionary& ec = subDict("energyControls");
-            static const wordList known{"nCorrectors", "tolerance", "maxThermalCo"};
-            for (const word& key : ec.toc())
-            {
-                if (!known.found(key))
-                {
-                    FatalIOErrorInFunction(ec)
-                        << "unknown entry '" << key << "' in energyControls; known entries: "
-                        << known << exit(FatalIOError);
-                }
-            }
+            checkEntries(ec, {"nCorrectors", "tolerance", "maxThermalCo"});
             nEnergyCorr_ = ec.getOrDefault<label>("nCorrectors", nEnergyCorr_);
             energyTolerance_ = ec.getOrDefault<scalar>("tolerance", energyTolerance_);
             maxThermalCo_ = ec.getOrDefault<scalar>("maxThermalCo", maxThermalCo_);

@@ -1,4 +1,5 @@
 #include "meshRefinement.H"
+#include "meltdemProperties.H"
 #include "meltdemRefineFvMesh.H"
 #include "cellContentRemap.H"
 #include "IOdictionary.H"
@@ -47,16 +48,7 @@ label readLabel
 
 void checkKeys(const dictionary& d)
 {
-    static const wordList known{"maxLevel", "refineInterval", "nBufferLayers", "maxCells", "criteria"};
-    for (const word& key : d.toc())
-    {
-        if (!known.found(key))
-        {
-            FatalIOErrorInFunction(d)
-                << "unknown entry '" << key << "' in " << d.name() << "; known entries: " << known
-                << exit(FatalIOError);
-        }
-    }
+    meltdemProperties::checkEntries(d, {"maxLevel", "refineInterval", "nBufferLayers", "maxCells", "criteria"});
     if (!d.isDict("criteria") || d.subDict("criteria").empty())
     {
         FatalIOErrorInFunction(d)

@@ -1,4 +1,5 @@
 #include "refinementCriterion.H"
+#include "meltdemProperties.H"
 
 namespace Foam
 {
@@ -46,15 +47,7 @@ autoPtr<refinementCriterion> refinementCriterion::New
     wordList known(criterion->entries());
     known.append(word("type"));
     known.append(word("level"));
-    for (const word& key : dict.toc())
-    {
-        if (!known.found(key))
-        {
-            FatalIOErrorInFunction(dict)
-                << "refinement criterion '" << name << "' (" << type << "): unknown entry '" << key
-                << "'; known entries: " << known << exit(FatalIOError);
-        }
-    }
+    meltdemProperties::checkEntries(dict, known, "refinement criterion " + name + ", type " + type);
     return criterion;
 }
 

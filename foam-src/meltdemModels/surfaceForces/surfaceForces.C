@@ -3,6 +3,7 @@
 \*---------------------------------------------------------------------------*/
 
 #include "surfaceForces.H"
+#include "meltdemProperties.H"
 #include "fvcGrad.H"
 #include "fvcSnGrad.H"
 #include "surfaceInterpolate.H"
@@ -42,19 +43,10 @@ Foam::meltdem::surfaceForces::surfaceForces
     nSmooth_(dict.getOrDefault<label>("nSmooth", 0)),
     marangoniDensityScaled_(dict.getOrDefault<bool>("marangoniDensityScaled", false))
 {
-    static const wordList known
-    {
-        "sigma0", "dSigmadT", "Tsigma0", "sigmaMin", "nSmooth", "marangoniDensityScaled"
-    };
-    for (const word& key : dict.toc())
-    {
-        if (!known.found(key))
-        {
-            FatalIOErrorInFunction(dict)
-                << "unknown entry '" << key << "' in surfaceTension; known entries: " << known
-                << exit(FatalIOError);
-        }
-    }
+    meltdemProperties::checkEntries
+    (
+        dict, {"sigma0", "dSigmadT", "Tsigma0", "sigmaMin", "nSmooth", "marangoniDensityScaled"}
+    );
     if (nSmooth_ < 0)
     {
         FatalIOErrorInFunction(dict)
