@@ -39,8 +39,7 @@ def main():
     try:
         layer.pbf.run(case, 1, LIMIT_S)
     except RuntimeError as e:
-        stop = layer.pbf.stop_reason(case) or str(e)[-300:]
-        print("solver stopped:", stop)
+        stop = _point.stop_message(case, e)
     s = layer.summary(case)
     layer.print_summary(s)
     xf = stopped(s, stop)
