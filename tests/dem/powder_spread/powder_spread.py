@@ -41,7 +41,7 @@ ok &= check_absolute(TEST, "grains in the box at the end (requested N)", s["grai
 ok &= check_absolute(TEST, "heap mean diameter [m] (uniform 15-45 um: 30 um, 3 standard errors)",
                      s["mean_diameter_heap_m"], 30e-6, 3 * (30e-6 / math.sqrt(12)) / math.sqrt(n))
 ok &= check_absolute(TEST, "effective layer packing V/(A gap) (LPBF beds 0.38-0.60, Mahmoodkhani 2019)",
-                     s["packing_fraction"], 0.49, 0.11,
+                     s["packing_fraction"], 0.49, 0.11, miss_within=0.4,
                      xfail="a blade at 2 d90 over a bare plate leaves empty patches (Nan et al. 2018): 0.10-0.25 "
                            "over the cases and seeds of bench/powder_spread.md; the bed under later layers packs "
                            "in range (dem.powder_spread.layers, bench/powder_spread_layers.md)")

@@ -94,7 +94,7 @@ def main():
                                  float(rc == 0 and atoms == {"2"}), 1.0, 0)
             ok &= check_relative(T, f"{tag}: restitution", e, E_REST, 0.005)
             ok &= check_relative(T, f"{tag}: largest overlap vs damped Hertz [R]", max(overlaps),
-                                 predicted * factor, 0.01, xfail=OVERLAP_MISS)
+                                 predicted * factor, 0.01, xfail=OVERLAP_MISS, miss_within=0.03)
     return 0 if ok else 1
 
 

@@ -123,7 +123,7 @@ def main():
     ok &= check_at_most(TEST, "largest speed at ratio 1e4 / the same case at 1e3 (the ratio adds no instability)",
                         r4["umax"] / r3["umax"], 2.0)
     ok &= check_at_most(TEST, "largest gas speed / 2 g t (potential flow past the drop)", r4["ugas"] / (2 * G * T_END),
-                        1.0, xfail=XFAIL_GAS)
+                        1.0, xfail=XFAIL_GAS, miss_within=19.0)
     worst = float(np.max(np.abs(bal["momentumErrorRel"][len(bal) // 10:])))
     worst3 = float(np.max(np.abs(r3["bal"]["momentumErrorRel"][len(r3["bal"]) // 10:])))
     print(f"{TEST}: momentum balance error relative to the exchanged impulse: ratio 1e4 {worst:.3g}, 1e3 {worst3:.3g}")

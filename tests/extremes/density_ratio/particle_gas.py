@@ -77,7 +77,8 @@ def main():
     print(f"{TEST}: fine: grain speed at {tr[-1, 0]:.3g} s: coupled {-tr[-1, 2]:.6g} m/s, standalone "
           f"{-ref[-1, 2]:.6g} m/s (time {ref[-1, 0]:.3g} s); largest gas speed {ugas:.3g} m/s")
     ok &= check_relative(TEST, "fine: speed lost by the grain, coupled vs standalone in gas at rest [m/s]",
-                         V0 + tr[-1, 2], V0 + ref[-1, 2], 0.1, xfail=XFAIL_DRAGGED)
+                         V0 + tr[-1, 2], V0 + ref[-1, 2], 0.1, xfail=XFAIL_DRAGGED,
+                         miss_within=0.95)
 
     case, rc, log, ugas = run(work, "coarse", 1e-5, t_end)
     print(f"{TEST}: coarse: largest gas speed {ugas:.3g} m/s")

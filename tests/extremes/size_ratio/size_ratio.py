@@ -32,7 +32,7 @@ import tempfile
 
 import numpy as np
 
-from meltdem.testing.report import check_absolute, check_at_most, check_relative
+from meltdem.testing.report import check_absolute, check_at_most, check_relative, report
 from meltdem.case import coupled as cc
 from meltdem.case import foam as fc
 
@@ -110,13 +110,20 @@ def run_ratio(test, work, model, ratio, t_ref, keep):
         m0 = melted[i - 1] if i > 0 else 0.0
         t_half = t0 + (0.5 * M - m0) / (melted[i] - m0) * (t[i] - t0)
     else:
-        t_half = math.inf
+        t_half = None  # not half molten by the run's end
     amax = max([float(x) for x in re.findall(r"Max\(alpha.metal\) = (\S+)", log)] or [0])
-    print(f"{test}: {tag}: half molten at {t_half:.4g} s (reference {t_ref:.4g} s), {len(t)} fluid steps, "
+    half = f"half molten at {t_half:.4g} s" if t_half is not None else f"not half molten by {t[-1]:.4g} s"
+    print(f"{test}: {tag}: {half} (reference {t_ref:.4g} s), {len(t)} fluid steps, "
           f"T min {Tr[:, 0].min():.5g} K, max alpha.metal {amax:.3g}, "
           f"momentum error {np.max(np.abs(led['mom_y_continuum_error'][1:])):.2g}")
-    ok &= check_relative(test, f"{tag}: time to melt half the particle vs undisturbed gas [s]", t_half, t_ref, 0.02,
-                         xfail=XFAIL_SLOW if ratio >= 1 else None)
+    xfail = XFAIL_SLOW if ratio >= 1 else None
+    if t_half is not None:
+        ok &= check_relative(test, f"{tag}: time to melt half the particle vs undisturbed gas [s]", t_half, t_ref,
+                             0.02, xfail=xfail, miss_within=5.0)
+    else:
+        # never half molten: the run's end, a lower bound of that time, booked as a miss
+        ok &= report(test, f"{tag}: time to melt half the particle (not reached: the run's end) vs undisturbed gas [s]",
+                     float(t[-1]), t_ref, "0.02 relative", False, xfail)
     return ok
 
 

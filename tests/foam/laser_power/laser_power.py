@@ -22,7 +22,7 @@ import numpy as np
 
 from meltdem import paths
 from meltdem.case import foam as fc
-from meltdem.testing.report import check_relative, check_absolute, report
+from meltdem.testing.report import check_relative, check_absolute, report_info
 
 SRC = paths.source_dir()
 
@@ -199,7 +199,7 @@ def main():
     integ, q = field_integral(case, "0")
     ok &= check_relative(TEST, "curved cap, off-centre beam: written-field integral [W]", integ, ETA * P, 1e-6)
     ok &= check_absolute(TEST, "curved cap: min source (>= 0) [W/m3]", min(0.0, float(q.min())), 0.0, 0.0)
-    report(TEST, "curved cap: un-normalised hit fraction (info)", r["hit"], "-", "info", True)
+    ok &= report_info(TEST, "curved cap: un-normalised hit fraction (info)", r["hit"])
     _, log2 = check_app(case, ["-times", "(0)"], np_=2)
     ok &= check_relative(TEST, "curved cap, np 2: integral (gSum) [W]", laser_lines(log2)[0]["integral"],
                          ETA * P, 1e-6)

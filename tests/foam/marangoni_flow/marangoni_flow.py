@@ -110,7 +110,7 @@ scaled = os.path.join(work, "scaled")
 make_and_run(scaled, "on", density_scaled=True)
 U = fc.read_internal(os.path.join(scaled, fc.time_dirs(scaled)[-1], "U")).reshape(ny, nx, 3)
 ok &= check_relative(TEST, f"marangoniDensityScaled: surface velocity at t={t_end:g} s [m/s] vs the two-fluid start-up",
-                     float(np.mean(0.5 * (U[j - 1, mid, 0] + U[j, mid, 0]))), ref, 0.10,
+                     float(np.mean(0.5 * (U[j - 1, mid, 0] + U[j, mid, 0]))), ref, 0.10, miss_within=0.25,
                      xfail="density scaling puts the force half a cell below a sharp interface: first order in the "
                      "cell size (-15.5 % at these 1 um cells, -8.4 % at 0.5 um)")
 if ok:

@@ -21,7 +21,7 @@ import numpy as np
 from meltdem import paths
 from meltdem.analysis.rosenthal import rosenthal, width_at_depth, gaussian_transient
 from meltdem.case import foam as fc
-from meltdem.testing.report import check_relative, report
+from meltdem.testing.report import check_relative, report_info
 
 SRC = paths.source_dir()
 
@@ -151,8 +151,8 @@ def main():
             mid = 0.5 * (lo + hi)
             lo, hi = (mid, hi) if g(mid) >= TM else (lo, mid)
         best = max(best, lo)
-    report(TEST, "melt-pool width [m] vs exact transient Gaussian-source solution (info)",
-           w_fv, 2 * best, "info", True)
+    ok &= report_info(TEST, "melt-pool width [m] vs exact transient Gaussian-source solution (info)",
+                      w_fv, 2 * best)
     return fc.finish(ok, work, "--keep" in sys.argv, shown=case)
 
 

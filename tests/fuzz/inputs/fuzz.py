@@ -33,7 +33,7 @@ import tempfile
 
 from meltdem import paths
 from meltdem.testing.cli import meltdem_command
-from meltdem.testing.report import check_absolute, report
+from meltdem.testing.report import check_absolute, report_info
 from meltdem.testing.thesis_case import thesis_particle
 
 SRC = paths.source_dir()
@@ -228,9 +228,8 @@ def main():
         print(f"{kind}: {n} mutations (seed {SEED}): " + ", ".join(f"{k} {v}" for k, v in sorted(c.items())))
         ok &= check_absolute(TEST, f"{kind} mutations tried", sum(c.values()), n, 0)
         for good in ("ran", "named"):
-            report(TEST, f"{kind} mutations that "
-                   f"{'ran with closed balances' if good == 'ran' else 'stopped with a named error'} (count, info)",
-                   c.get(good, 0), "-", "info", True)
+            result = "ran with closed balances" if good == "ran" else "stopped with a named error"
+            ok &= report_info(TEST, f"{kind} mutations that {result} (count, info)", c.get(good, 0))
         for bad in ("crash", "hang", "unclosed", "unnamed"):
             ok &= check_absolute(TEST, f"{kind} mutations ending in a {bad}", c.get(bad, 0), 0, 0)
     from meltdem.case import foam as fc

@@ -82,7 +82,7 @@ def main():
     case, s = run_variant(work, "laser_on", [], reuse)
     d018 = s["pool_diameter_at_0.018ms_um"]
     ok &= check_relative(TEST, "laser on: melt-pool diameter at 0.018 ms [um] (10 um cells) vs paper ~130 um",
-                         d018, scene.PAPER["pool_diameter_um"], 0.15,
+                         d018, scene.PAPER["pool_diameter_um"], 0.15, miss_within=0.35,
                          xfail="10 um cells put the absorbed heat into a 10 um top layer: the surface runs "
                                "cooler and the pool is smaller (the 5 um full variant: see README)")
     p1 = s["particles"][0]
@@ -93,7 +93,7 @@ def main():
     ok &= check_at_most(TEST, f"laser on: worst relative deviation of the {len(arr)} particle arrivals (reaching, "
                         "deflected at or melting within 5 um of the substrate top) from the kinematics", worst, 0.05)
     ok &= check_relative(TEST, "laser on: particle 1 arrival [ms] vs paper (enters the pool at ~0.006 ms)",
-                         p1.get("arrival_ms") or np.inf, scene.PAPER["first_enters_pool_ms"], 0.20,
+                         p1.get("arrival_ms") or np.inf, scene.PAPER["first_enters_pool_ms"], 0.20, miss_within=0.3,
                          xfail="the paper's stated geometry gives 0.0045 ms by kinematics; its 0.006 ms is "
                                "read off figures")
     ok &= check_at_most(TEST, "laser on: particle 1 molten fraction when it reaches the substrate "

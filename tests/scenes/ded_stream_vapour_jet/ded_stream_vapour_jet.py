@@ -18,7 +18,7 @@ from meltdem import paths
 from meltdem.case import coupled as cc
 from meltdem.case import foam as fc
 from meltdem.loader import load_module
-from meltdem.testing.report import check_at_most, report
+from meltdem.testing.report import check_at_most, report_info
 
 SRC = paths.source_dir()
 DED = load_module(os.path.join(SRC, "tests", "scenes", "ded_stream", "ded_stream.py"))
@@ -35,10 +35,9 @@ def main():
                         s["worst_enthalpy_system_error"], 1e-6)
     booked, evaporated, metal = cc.check_evaporation_booked(TEST, case, 1e-10)
     ok &= booked
-    report(TEST, "evaporated metal / continuum metal at the start (info)", evaporated / metal, "-", "info", True)
-    report(TEST, "pool diameter at 0.018 ms [um] (info; paper ~130)", s["pool_diameter_at_0.018ms_um"], "-",
-           "info", True)
-    report(TEST, "peak temperature [K] (info; T_v 3000 K)", max(s["peak_T_K"]), "-", "info", True)
+    ok &= report_info(TEST, "evaporated metal / continuum metal at the start (info)", evaporated / metal)
+    ok &= report_info(TEST, "pool diameter at 0.018 ms [um] (info; paper ~130)", s["pool_diameter_at_0.018ms_um"])
+    ok &= report_info(TEST, "peak temperature [K] (info; T_v 3000 K)", max(s["peak_T_K"]))
     return fc.finish(ok, work, keep)
 
 

@@ -85,13 +85,14 @@ def main():
     ok = ok_bare & check_absolute(TEST, "coupled run reaches the end of the track [s]", s["time_s"], t_end, 1e-9)
     print(f"{TEST}: {s['particles_inserted']} grains inserted, wall {s['wall_seconds']:.0f} s")
     ok &= check_absolute(TEST, "bead width vs experiment (table 4.2) [mm]", s["bead_width_mm"], ex["width_mm"],
-                         CELL_MM, xfail=SHORT_COUPLED)
+                         CELL_MM, xfail=SHORT_COUPLED, miss_within=1.2)
     ok &= check_absolute(TEST, "bead height vs experiment (table 4.2) [mm]", s["bead_height_mm"], ex["height_mm"],
-                         CELL_MM, xfail=SHORT)
+                         CELL_MM, xfail=SHORT, miss_within=0.8)
     ok &= check_absolute(TEST, "penetration vs experiment (table 4.2) [mm]", s["penetration_mm"],
                          ex["penetration_mm"], CELL_MM)
     ok &= check_absolute(TEST, "powder deposition efficiency vs experiment (table 4.2) [%]",
-                         s["deposition_efficiency_pct"], ex["efficiency_pct"], 5.0, xfail=SHORT_COUPLED)
+                         s["deposition_efficiency_pct"], ex["efficiency_pct"], 5.0, xfail=SHORT_COUPLED,
+                         miss_within=15.0)
     # powder bookkeeping
     fed = s["powder_fed_kg"]
     ok &= check_relative(TEST, "fed = deposited + lost + aloft + pending [kg]",

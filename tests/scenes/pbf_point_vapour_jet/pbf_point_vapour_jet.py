@@ -17,7 +17,7 @@ from meltdem import paths
 from meltdem.case import coupled as cc
 from meltdem.case import foam as fc
 from meltdem.loader import load_module
-from meltdem.testing.report import report
+from meltdem.testing.report import report_info
 
 SRC = paths.source_dir()
 PP = load_module(os.path.join(SRC, "tests", "scenes", "pbf_point", "pbf_point.py"))
@@ -34,9 +34,9 @@ def main():
     ok = PP.common_checks(TEST, case, s, stop)
     booked, evaporated, metal = cc.check_evaporation_booked(TEST, case, 1e-10)
     ok &= booked
-    report(TEST, "evaporated metal / continuum metal at the start (info)", evaporated / metal, "-", "info", True)
-    report(TEST, "peak metal temperature [K] (info; T_v 3000 K)", s["peak_metal_T_K"], "-", "info", True)
-    report(TEST, "grains ejected (info)", s["grains_ejected"], "-", "info", True)
+    ok &= report_info(TEST, "evaporated metal / continuum metal at the start (info)", evaporated / metal)
+    ok &= report_info(TEST, "peak metal temperature [K] (info; T_v 3000 K)", s["peak_metal_T_K"])
+    ok &= report_info(TEST, "grains ejected (info)", s["grains_ejected"])
     return fc.finish(ok, work, keep)
 
 

@@ -36,14 +36,16 @@ WIDE = ("the pool is as wide as conduction from the 170 um beam makes it (Eagar-
 
 
 def run_track(work, name, extra=(), xfail=None):
+    """xfail: quantity -> (the reason of its known miss, the bound of that miss [um])"""
     case = os.path.join(work, name)
     scene.main(["all", case, "--ci", "--track-case", name] + list(extra))
     s = json.load(open(os.path.join(case, "summary.json")))
     ok = True
     for q in ("width", "depth"):
         m, sd = s[f"measured_{q}_um"], s[f"measured_{q}_sd_um"]
+        reason, bound = (xfail or {}).get(q, (None, None))
         ok &= check_absolute(TEST, f"{name}: {q} vs AMB2018-02 mean (tolerance max(sd, 10 %)) [um]", s[f"{q}_um"], m,
-                             scene.tolerance(m, sd), xfail=(xfail or {}).get(q))
+                             scene.tolerance(m, sd), xfail=reason, miss_within=bound)
     ok &= check_absolute(TEST, f"{name}: run reaches the end of the track [s]", s["time_s"], s["end_s"], 1e-12)
     b = np.atleast_1d(np.genfromtxt(os.path.join(case, "postProcessing", "balance", "0", "balance.csv"),
                                     delimiter=",", names=True))
@@ -66,9 +68,9 @@ def run_track(work, name, extra=(), xfail=None):
 def main():
     keep = "--keep" in sys.argv
     work = tempfile.mkdtemp(prefix="meltdem-single-track-")
-    ok = run_track(work, "AMMT-B", xfail={"width": WIDE})
-    ok &= run_track(work, "AMMT-C", xfail={"width": WIDE})
-    ok &= run_track(work, "CBM-A", ["--track", "0.4"], xfail={"width": KEYHOLE, "depth": KEYHOLE})
+    ok = run_track(work, "AMMT-B", xfail={"width": (WIDE, 45.0)})
+    ok &= run_track(work, "AMMT-C", xfail={"width": (WIDE, 60.0)})
+    ok &= run_track(work, "CBM-A", ["--track", "0.4"], xfail={"width": (KEYHOLE, 80.0), "depth": (KEYHOLE, 100.0)})
     return fc.finish(ok, work, keep)
 
 

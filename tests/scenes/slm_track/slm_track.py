@@ -26,7 +26,7 @@ from meltdem import paths
 from meltdem import scene as scenes
 from meltdem.case import coupled as cc
 from meltdem.case import foam as fc
-from meltdem.testing.report import check_at_most, check_relative, report
+from meltdem.testing.report import check_at_most, check_relative, report_info
 
 SRC = paths.source_dir()
 
@@ -62,19 +62,19 @@ def main():
     case = os.path.join(work, "case")
     s, ok = run_exact(TEST, case)
     ok &= check_relative(TEST, "melted track width [m] vs conduction estimate (Gaussian source, bare SS304)",
-                         s["track_width_m"], s["gaussian_width_m"], 0.3, xfail=XFAIL_BED_WIDTH)
+                         s["track_width_m"], s["gaussian_width_m"], 0.3, xfail=XFAIL_BED_WIDTH,
+                         miss_within=0.6)
     ok &= check_relative(TEST, "median speed of the ejected particles [m/s] vs thesis ~1 m/s",
                          s["ejection_speed_median_m_per_s"], 1.0, 0.5,
                          xfail="no vapour recoil or gas jet in the default run (--vapour-jet has them: "
                          "scenes.slm-track.vapour-jet); grains move only by contacts and the melt")
     ok &= check_at_most(TEST, "DEM updates capped by the 10 m/s speed limit (fix nve/limit; pop-corn watch)",
                         s["dem_updates_speed_limited"], 0)
-    report(TEST, "particles ejected (centre above the bed top, moving up) (info)", s["particles_ejected"],
-           "-", "info", True)
-    report(TEST, "denudation width [m] (info, no thesis number)", s["denudation_width_m"], "-", "info", True)
-    report(TEST, "melted depth below the substrate top [m] (info)", s["track_depth_m"], "-", "info", True)
-    report(TEST, "bead height above the substrate top [m] (info; thesis expectation 30 um)",
-           s["bead_height_m"], 30e-6, "info", True)
+    ok &= report_info(TEST, "particles ejected (centre above the bed top, moving up) (info)", s["particles_ejected"])
+    ok &= report_info(TEST, "denudation width [m] (info, no thesis number)", s["denudation_width_m"])
+    ok &= report_info(TEST, "melted depth below the substrate top [m] (info)", s["track_depth_m"])
+    ok &= report_info(TEST, "bead height above the substrate top [m] (info; thesis expectation 30 um)",
+                      s["bead_height_m"], 30e-6)
     print(f"{TEST}: wall time of the coupled run {s['wall_s']:.0f} s")
     return fc.finish(ok, work, keep)
 

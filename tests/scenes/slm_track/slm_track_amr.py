@@ -79,7 +79,7 @@ def main():
     ok &= check_relative(TEST, "powder melted (volume of grains gone or shrunk), refined vs uniform [m^3]",
                          s["powder_melted_volume_m3"], u["powder_melted_volume_m3"], 0.02)
     ok &= check_relative(TEST, "track depth, refined 30 -> 15 um vs uniform 15 um [m]", s["track_depth_m"],
-                         u["track_depth_m"], 0.02, xfail=DEPTH_OVER_LIMIT)
+                         u["track_depth_m"], 0.02, xfail=DEPTH_OVER_LIMIT, miss_within=0.06)
     ref, worst = fc.refinement_ledger(case)
     ok &= check_at_most(TEST, f"metal and enthalpy across each of {len(ref)} mesh changes, max |after/before - 1|",
                         worst, 1e-12)

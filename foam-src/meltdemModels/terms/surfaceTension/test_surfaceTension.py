@@ -68,7 +68,8 @@ ok &= check_at_most(TEST, f"F({T2:g} K) vs sigma({T2:g})/sigma({T1:g}) F({T1:g} 
 ok &= check_relative(TEST, f"force on the right half of the disc [N/m] vs -2 sigma({T1:g} K), smooth interface",
                      right_half(F1), -2.0 * sigma(T1), 0.02)
 ok &= check_relative(TEST, f"force on the right half of the disc [N/m] vs -2 sigma({T1:g} K), one-cell interface, "
-                     "nSmooth 2", right_half(F_sharp), -2.0 * sigma(T1), 0.02, xfail=SHARP_XFAIL)
+                     "nSmooth 2", right_half(F_sharp), -2.0 * sigma(T1), 0.02, xfail=SHARP_XFAIL,
+                     miss_within=0.2)
 _, F_mushy = force("smooth_mushy", smooth, T1, 0, 0.5)
 _, F_solid = force("smooth_solid", smooth, T1, 0, 0.0)
 ok &= check_at_most(TEST, "mushy disc (f_l 0.5): F vs 0.5 F(liquid), max deviation / max |F|",
