@@ -337,6 +337,9 @@ void FixPowderInsert::init()
     for (int i = 0; i < modify->nfix; i++)
       if (strcmp(modify->fix[i]->style, "powder/melt") == 0) fixmelt = dynamic_cast<FixPowderMelt *>(modify->fix[i]);
     if (!fixmelt) error->all(FLERR, "Fix powder/insert temp requires fix powder/melt");
+    if (temp > fixmelt->material().Tmelt)
+      error->all(FLERR, "Fix powder/insert temp {} is above Tmelt {} of fix powder/melt {}: solid grains only", temp,
+                 fixmelt->material().Tmelt, fixmelt->id);
   }
 }
 

@@ -74,6 +74,11 @@ cases = [
     ("pair cutoff below the diameter", fix(OK, HEADER.replace("pair_style granular 1.2e-3", "pair_style granular")),
      "pair cutoff 0 is smaller than the largest inserted diameter"),
     ("temp without fix powder/melt", fix(OK + " temp 300"), "temp requires fix powder/melt"),
+    # stopped before the first step (not at the first insertion): run 0 inserts nothing
+    ("temp above fix powder/melt's Tmelt",
+     HEADER.replace("atom_style sphere", "atom_style sphere 1")
+     + "fix m all powder/melt cp 500 Tmelt 1700 latent 2.7e5\n"
+     + f"fix ins all powder/insert {OK} temp 1800\nrun 0\n", "temp 1800 is above Tmelt 1700 of fix powder/melt m"),
     ("units metal", fix(OK, HEADER.replace("units si", "units metal")), "requires units si"),
     ("units cgs", fix(OK, HEADER.replace("units si", "units cgs")), "requires units si"),
     ("atom_style atomic", fix(OK, HEADER.replace("atom_style sphere", "atom_style atomic")),
