@@ -173,6 +173,7 @@ void Foam::functionObjects::meltdemBalance::stored
 
 void Foam::functionObjects::meltdemBalance::start()
 {
+    checkRenamed();
     energy_ = hasThermo_ && foundObject<volScalarField>(TName_);
     momentum_ = foundObject<volVectorField>(UName_);
     laser_ = energy_ && foundObject<volScalarField>(laserName_);
@@ -546,7 +547,52 @@ bool Foam::functionObjects::meltdemBalance::read(const dictionary& dict)
     laserName_ = dict.getOrDefault<word>("laserHeatSource", "laserHeatSource");
     evapName_ =
         dict.getOrDefault<word>("evaporationHeatLoss", "evaporationHeatLoss");
+
+    renamed_ = dict;
+    renamed_.clear();
+    const word names[] =
+    {
+        alphaName_, TName_, UName_, phiName_, pName_, fLName_, laserName_,
+        evapName_
+    };
+    const word keys[] =
+    {
+        "alpha", "T", "U", "phi", "p", "liquidFraction", "laserHeatSource",
+        "evaporationHeatLoss"
+    };
+    const word defaults[] =
+    {
+        "alpha." + metalName_, "T", "U", "phi", "p", "liquidFraction",
+        "laserHeatSource", "evaporationHeatLoss"
+    };
+    for (label i = 0; i < 8; ++i)
+    {
+        const entry* eptr = dict.findEntry(keys[i], keyType::LITERAL);
+        if (eptr && names[i] != defaults[i])
+        {
+            renamed_.add(*eptr);
+        }
+    }
     return true;
+}
+
+
+void Foam::functionObjects::meltdemBalance::checkRenamed() const
+{
+    for (const entry& e : renamed_)
+    {
+        const word field(e.stream());
+        if (!obr_.found(field))
+        {
+            FatalIOErrorInFunction(renamed_)
+                << type() << " " << name() << ": " << e.keyword() << " "
+                << field << ": no field " << field << " (fields: "
+                << obr_.sortedNames<volScalarField>() << " "
+                << obr_.sortedNames<volVectorField>() << " "
+                << obr_.sortedNames<surfaceScalarField>() << ")"
+                << exit(FatalIOError);
+        }
+    }
 }
 
 

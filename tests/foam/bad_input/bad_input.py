@@ -91,8 +91,18 @@ VARIANTS = {
                                     "isothermalTemperature 0;\n", ["isothermalTemperature"]),
 }
 
+# the meltdemBalance function object of system/controlDict: name -> (what is wrong, its entries, words)
+DOC_BALANCE = ("alpha alpha.metal; T T; U U; phi phi; p p; liquidFraction liquidFraction; "
+               "laserHeatSource laserHeatSource; evaporationHeatLoss evaporationHeatLoss;")
+BALANCE_VARIANTS = {
+    "balance_misspelt_alpha": ("meltdemBalance alpha alpha.metl (misspelt: every cell would count as metal)",
+                               "alpha alpha.metl;", ["alpha.metl", "alpha", "balance"]),
+    "balance_misspelt_temperature": ("meltdemBalance T Temp (misspelt: the enthalpy columns would go)",
+                                     "T Temp;", ["Temp", "balance"]),
+}
 
-def build(case, physics, metal, gas, extra):
+
+def build(case, physics, metal, gas, extra, balance=""):
     nx = 5
     g = fc.Grid2D(1e-3, 2e-4, nx, 1, dz=2e-4)
     g.block_mesh(case, patches={"left": ("hot", "patch"), "right": ("cold", "patch"),
@@ -111,7 +121,7 @@ def build(case, physics, metal, gas, extra):
     ph.update(physics)
     fc.meltdem_properties(case, physics=ph, extra=metal + gas + extra)
     fc.control_dict(case, "meltdemFoam", 1e-3, 1e-4, 1e-3, adjustable=False,
-                    extra="functions\n{\n    balance { type meltdemBalance; }\n}\n")
+                    extra=f"functions\n{{\n    balance {{ type meltdemBalance; {balance} }}\n}}\n")
     fc.fv_schemes(case, extra_div="    div(rhoCpPhi,T) Gauss upwind;\n")
     fc.fv_solution(case, p_ref_cell=0, extra_solvers='    "T.*" { solver PBiCGStab; preconditioner DILU; '
                                                      'tolerance 1e-12; relTol 0; }\n')
@@ -161,6 +171,21 @@ def main():
     for name, (what, physics, metal, gas, extra, words) in VARIANTS.items():
         case = os.path.join(work, name)
         build(case, physics, metal, gas, extra)
+        rc, out = run(case)
+        good, measured = judge(name, rc, out, fatal_text(out), words)
+        ok &= report(TEST, f"{what}: FatalIOError naming {' '.join(words)}", measured,
+                     "FatalIOError naming the entry", "exact", good)
+
+    # the balance block of doc/foam_meltdem_balance.rst, every name at its default (no laser or
+    # evaporation field in this case), runs; a renamed field that does not exist stops
+    case = os.path.join(work, "balance_doc_block")
+    build(case, {}, METAL, GAS, "", DOC_BALANCE)
+    rc, out = run(case)
+    ok &= report(TEST, "meltdemBalance with the doc's block (default names) runs to the end (exit code)", rc, 0,
+                 "exact", rc == 0 and "End" in out)
+    for name, (what, balance, words) in BALANCE_VARIANTS.items():
+        case = os.path.join(work, name)
+        build(case, {}, METAL, GAS, "", balance)
         rc, out = run(case)
         good, measured = judge(name, rc, out, fatal_text(out), words)
         ok &= report(TEST, f"{what}: FatalIOError naming {' '.join(words)}", measured,
