@@ -72,11 +72,7 @@ meltdemProperties::meltdemProperties(const fvMesh& mesh)
     const auto& table = physicsTerm::infoTable();
     // the top level: the solver's own entries and every term's sub-dictionaries, so that a
     // misspelt block (refinment, energyControl) stops instead of switching its part off
-    wordList blocks
-    {
-        "FoamFile", "physics", "metal", "gas", "energyControls", "isothermalTemperature", "particles",
-        "refinement"
-    };
+    wordList blocks(ownEntries());
     for (const auto& t : table)
     {
         for (const auto& d : t.second.entries)
@@ -181,6 +177,17 @@ meltdemProperties::meltdemProperties(const fvMesh& mesh)
 const Foam::wordList& meltdemProperties::coreSwitches()
 {
     static const wordList names{"flow", "energy", "particles"};
+    return names;
+}
+
+
+const Foam::wordList& meltdemProperties::ownEntries()
+{
+    static const wordList names
+    {
+        "FoamFile", "physics", "metal", "gas", "energyControls", "isothermalTemperature", "particles",
+        "refinement"
+    };
     return names;
 }
 

@@ -1,4 +1,5 @@
 #include "physicsTerm.H"
+#include "meltdemProperties.H"
 
 namespace Foam
 {
@@ -73,7 +74,11 @@ void Foam::meltdem::physicsTerm::writeTable(std::ostream& os)
         writeInfo(os, t.second);
         first = false;
     }
-    os << "}}" << std::endl;
+    // the top level's own entries: with the terms' sub-dictionaries, all it may hold
+    os << "}, \"topLevel\": [";
+    const wordList& own = meltdemProperties::ownEntries();
+    forAll(own, i) os << (i ? ", " : "") << '"' << own[i].c_str() << '"';
+    os << "]}" << std::endl;
 }
 
 

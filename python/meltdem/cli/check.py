@@ -508,6 +508,13 @@ def check_foam(case, rep):
                      f"are not checked")
             return
         switches = dict(table["core"], **table["terms"])
+        # the top level holds the solver's own entries and the terms' sub-dictionaries only (a
+        # misspelt block, refinment or energyControl, would switch its part off: the solver stops)
+        blocks = set(table.get("topLevel", [])) | {s for t in switches.values() for s in t["entries"]}
+        if table.get("topLevel"):
+            for k in md:
+                if k not in blocks:
+                    rep.bad(rel, f"{k}: unknown entry; known entries: {' '.join(sorted(blocks))}")
         for k in ph:
             if k not in switches:
                 rep.bad(rel, f"physics.{k}: unknown switch; known switches: {' '.join(sorted(switches))}")

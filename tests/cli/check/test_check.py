@@ -138,6 +138,10 @@ broken("powder inserted above the mesh", ded,
            "region feed block 1e-4 1.6e-4 1e-4 1.6e-4 2.41e-4 2.59e-4\n"
            "fix ins all powder/insert 10 1 region feed diam one 1.6e-5 dens 7900\n"),
        ["in.particles:", "region feed", "lies outside the mesh", "booked lost"])
+broken("misspelt top-level block (refinment)", ded,
+       lambda c: open(os.path.join(c, "constant/meltdemProperties"), "a").write(
+           "\nrefinment { maxLevel 1; criteria { interface { level 1; } } }\n"),
+       ["constant/meltdemProperties:", "refinment: unknown entry", "refinement"])
 shutil.copytree(ded, os.path.join(work, "with space"))
 rc, out, errors = run_check(os.path.join(work, "with space"))
 print(f"--- case path with a space\n{out}")
