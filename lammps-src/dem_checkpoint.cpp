@@ -32,6 +32,7 @@ namespace meltdem {
 namespace {
 
 constexpr const char *kState = "state";
+constexpr const char *kCommands = "commands";
 constexpr const char *kComplete = "complete";
 constexpr const char *kFixId = "meltdem_checkpoint";
 
@@ -86,25 +87,37 @@ class CheckpointedInput {
 
   void execute(const std::vector<InputCommand> &commands, bool resume)
   {
+    commands_ = &commands;
+    expanded_.assign(commands.size(), std::string());
     DemState at;
     if (resume) at = start_resume(commands);
     int run_index = -1;
-    for (const InputCommand &c : commands) {
+    for (std::size_t i = 0; i < commands.size(); ++i) {
+      const InputCommand &c = commands[i];
       const bool run = c.name() == "run";
       if (run) ++run_index;
       if (resume && run_index < at.run_index) {
-        if (!run)
-          for (const std::string &line : replay_->before_checkpoint(lmp_, c)) lmp_->input->one(line);
+        if (!run) {
+          // replayed as it was executed: its $(...) and ${...} as they were then, not now
+          InputCommand as_run = c;
+          if (expanded_[i].empty())
+            expanded_[i] = substituted(lmp_, c.text);
+          else
+            as_run.text = expanded_[i];
+          for (const std::string &line : replay_->before_checkpoint(lmp_, as_run)) lmp_->input->one(line);
+        }
         note(c);
         continue;
       }
       if (resume && run && run_index == at.run_index) {
+        if (c.text.find('$') != std::string::npos) check_run_unchanged(c, at);  // (its variables known now)
         Update *u = lmp_->update;
         u->atime = at.time;
         u->atimestep = u->ntimestep;
         at_ = at;
         arm();
-        if (u->ntimestep < at.end) {
+        // (also with no step left: its setup writes the checkpoint step's outputs again)
+        if (u->ntimestep <= at.end) {
           char line[160];
           std::snprintf(line, sizeof line, "run %lld upto start %lld stop %lld", at.end, at.start, at.stop);
           lmp_->input->one(line);
@@ -114,11 +127,15 @@ class CheckpointedInput {
       if (run)
         run_command(run_index, c);
       else {
+        expanded_[i] = substituted(lmp_, c.text);
         lmp_->input->one(c.text);
         note(c);
       }
     }
-    if (lmp_->comm->me == 0 && replay_) replay_->merge_outputs();
+    if (lmp_->comm->me == 0 && replay_) {
+      replay_->merge_outputs();
+      replay_->remove_scratch();
+    }
   }
 
  private:
@@ -127,6 +144,10 @@ class CheckpointedInput {
   long long every_;
   std::unique_ptr<InputReplay> replay_;
   DemState at_;  // the run in progress
+  // the input's commands, and each executed one as LAMMPS executed it (variables
+  // substituted; a checkpoint records them, empty for runs and commands not yet reached)
+  const std::vector<InputCommand> *commands_ = nullptr;
+  std::vector<std::string> expanded_;
   // the output files of the dump and fix commands executed so far (named between runs:
   // the variables of later ones may not exist yet), and their sizes before the outputs of
   // the checkpoint step
@@ -144,11 +165,25 @@ class CheckpointedInput {
 
   DemState start_resume(const std::vector<InputCommand> &commands)
   {
-    for (const InputCommand &c : commands)
+    for (const InputCommand &c : commands) {
       if (c.name() == "fix" && c.words.size() > 3 && c.words[3] == "pour")
         fail("Cannot resume " + c.where + ": fix " + c.words[1] +
              " pour keeps no restart state, so a resumed run would pour its particles again; use fix "
              "powder/insert (it resumes), or run the case again from the start");
+      if (c.name() == "if")
+        for (std::size_t k = 2; k < c.words.size(); ++k) {
+          std::string w = c.words[k];
+          w.erase(std::remove(w.begin(), w.end(), '"'), w.end());
+          w.erase(std::remove(w.begin(), w.end(), '\''), w.end());
+          const std::vector<std::string> inner = plain_words(w);
+          if (!inner.empty() &&
+              (inner[0] == "run" || inner[0] == "minimize" || inner[0] == "include" || inner[0] == "rerun"))
+            fail("Cannot resume " + c.where + ": its if executes '" + inner[0] +
+                 "', which a resume can neither place nor replay (a checkpoint counts the input's own run "
+                 "commands); run the case again from the start, or write the input without " +
+                 inner[0] + " inside if");
+        }
+    }
     const std::vector<long long> steps = complete_steps(dir_);
     if (steps.empty())
       fail("Cannot resume: no complete checkpoint in " + dir_ +
@@ -173,6 +208,12 @@ class CheckpointedInput {
         every_ = std::atoll(value.c_str()), ++found;
     }
     if (found != 6) fail("Cannot resume: the checkpoint " + ck + "/" + kState + " is unreadable");
+    // before any output is cut back (one with variables: when they are known, at the run)
+    int run_index = -1;
+    for (const InputCommand &c : commands)
+      if (c.name() == "run" && ++run_index == at.run_index && c.text.find('$') == std::string::npos)
+        check_run_unchanged(c, at);
+    read_expanded(ck + "/" + kCommands, commands);
     replay_ = std::make_unique<InputReplay>(ck + "/" + FixPowderCheckpoint::kRestartFile,
                                             read_output_sizes(ck + "/" + LammpsCouplingHost::kOutputsFile));
     if (lmp_->comm->me == 0) {
@@ -187,6 +228,47 @@ class CheckpointedInput {
     }
     MPI_Barrier(lmp_->world);
     return at;
+  }
+
+  // the run in progress at the checkpoint, as the input now writes it, must end where it did:
+  // a resume continues that run (a changed length would be ignored without a word)
+  void check_run_unchanged(const InputCommand &c, const DemState &at)
+  {
+    const std::vector<std::string> w = plain_words(substituted(lmp_, c.text));
+    bool upto = false, start = false;
+    for (std::size_t k = 2; k < w.size(); ++k) {
+      if (w[k] == "upto") upto = true;
+      if (w[k] == "start") start = true;
+    }
+    if (!upto && start) return;  // (its first step is not recorded: nothing to compare)
+    const long long n = w.size() > 1 ? std::atoll(w[1].c_str()) : 0;
+    const long long end = upto ? n : at.start + n;
+    if (end != at.end)
+      fail("Cannot resume " + c.where + ": '" + c.text + "' now ends at step " + std::to_string(end) +
+           ", the run of the checkpoint at step " + std::to_string(at.end) +
+           " (the input changed since). A resume continues the run as it was started: restore its step "
+           "count, or add another run command after it to run longer");
+  }
+
+  // the commands as they were executed before the checkpoint (written by write_expanded); a
+  // record whose command the input no longer holds as written is left out
+  void read_expanded(const std::string &file, const std::vector<InputCommand> &commands)
+  {
+    std::ifstream in(file);
+    std::string index, original, expanded;
+    while (std::getline(in, index) && std::getline(in, original) && std::getline(in, expanded)) {
+      const std::size_t i = std::strtoull(index.c_str(), nullptr, 10);
+      if (i < commands.size() && commands[i].text == original) expanded_[i] = expanded;
+    }
+  }
+
+  void write_expanded(const std::string &file) const
+  {
+    std::ofstream os(file, std::ios::trunc);
+    for (std::size_t i = 0; i < expanded_.size(); ++i)
+      if (!expanded_[i].empty()) os << i << '\n' << (*commands_)[i].text << '\n' << expanded_[i] << '\n';
+    os.close();
+    if (!os) throw LammpsSetupError("cannot write " + file + ": " + std::strerror(errno));
   }
 
   // a run command of the input as written, with the checkpoint fix armed for it
@@ -249,6 +331,7 @@ class CheckpointedInput {
     if (lmp_->comm->me == 0) {
       try {
         write_output_sizes(ck + "/" + LammpsCouplingHost::kOutputsFile, sizes_);
+        write_expanded(ck + "/" + kCommands);
         const Update *u = lmp_->update;
         char t[64];
         std::snprintf(t, sizeof t, "%a", u->atime + double(u->ntimestep - u->atimestep) * u->dt);

@@ -210,7 +210,7 @@ InputReplay::InputReplay(std::string restart_file, OutputSizes outputs) :
 {
 }
 
-InputReplay::~InputReplay()
+void InputReplay::remove_scratch() const
 {
   for (const Redirect &r : redirects_) std::remove(r.scratch.c_str());
 }

@@ -47,7 +47,6 @@ class InputReplay {
  public:
   // outputs: the output files at the checkpoint (read_output_sizes)
   InputReplay(std::string restart_file, OutputSizes outputs);
-  ~InputReplay();
   InputReplay(const InputReplay &) = delete;
   InputReplay &operator=(const InputReplay &) = delete;
 
@@ -64,6 +63,10 @@ class InputReplay {
   // append what the redirected fix ave/* files wrote since the last call to their files
   // (call on one rank at each checkpoint and at the end)
   void merge_outputs();
+
+  // remove the redirected files' scratch copies (the rank that merged, after its last merge:
+  // another rank removing them could race that merge)
+  void remove_scratch() const;
 
  private:
   struct Redirect {

@@ -209,6 +209,7 @@ LammpsCouplingHost::~LammpsCouplingHost()
   if (impl_->replay && impl_->me == 0) {
     try {
       impl_->replay->merge_outputs();
+      impl_->replay->remove_scratch();
     } catch (const LammpsSetupError &e) {
       std::fprintf(stderr, "WARNING: %s\n", e.what());
     }

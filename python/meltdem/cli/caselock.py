@@ -80,6 +80,41 @@ class CaseLock:
         self.release()
 
 
+# the processes of a run: the solvers and MPI's launchers
+SOLVER_PROCESSES = ("meltdem-lmp", "meltdemFoam", "mpirun", "mpiexec", "orterun", "orted", "prted", "prterun")
+
+
+def solvers_in(case):
+    """(pid, name) of solver processes other than this one whose working folder is the case: the
+    ranks of a killed run live on for a moment (killing mpirun's group leaves them), and write."""
+    case = os.path.realpath(case)
+    found = []
+    for pid in os.listdir("/proc"):
+        if not pid.isdigit() or int(pid) == os.getpid():
+            continue
+        try:
+            name = os.path.basename(os.readlink(f"/proc/{pid}/exe"))
+            if name in SOLVER_PROCESSES and os.path.realpath(os.readlink(f"/proc/{pid}/cwd")) == case:
+                found.append((int(pid), name))
+        except OSError:
+            continue
+    return found
+
+
+def wait_for_solvers(case, timeout=30.0, poll=0.2):
+    """Wait until no solver process of an earlier run works in the case; CaseLocked naming them
+    if some still do after timeout seconds. Returns the (pid, name) waited for."""
+    first = solvers_in(case)
+    left, end = first, time.time() + timeout
+    while left and time.time() < end:
+        time.sleep(poll)
+        left = solvers_in(case)
+    if left:
+        raise CaseLocked(f"processes of an earlier run still work in the case {case} after {timeout:g} s ("
+                         + ", ".join(f"pid {p} {n}" for p, n in left) + "): stop them, then run again")
+    return first
+
+
 def _read(fd):
     try:
         os.lseek(fd, 0, os.SEEK_SET)

@@ -595,8 +595,16 @@ def run(target, case=None, np_=1, resume=False, size="ci", check_first=True, ana
     except caselock.CaseLocked as e:
         raise StepError(str(e))
     try:
+        # the ranks of a killed run outlive its launcher for a moment: a resume started at once
+        # would share the output files with them
+        try:
+            waited = caselock.wait_for_solvers(case)
+        except caselock.CaseLocked as e:
+            raise StepError(str(e))
         if lock.stale:
             say(f"took over the case lock of a run that ended without releasing it ({lock.stale})")
+        if waited:
+            say("waited for the processes of an earlier run to end: " + ", ".join(f"pid {p} {n}" for p, n in waited))
         return _run(name, target, case, lock, np_, resume, size, check_first, analyse, checkpoint_every)
     finally:
         lock.release()

@@ -71,31 +71,36 @@ def melt_fix_ids(case):
     return ids or ["melt"]
 
 
-def step_time_map(case):
-    """(steps, times) from the thermo tables of log.lammps that have Step and Time columns."""
-    steps, times = [], []
+def run_logs(case):
+    """log.lammps and, after resumes, the logs of the runs it continues (log.lammps.1, .2, ...:
+    meltdem run's keep_log), oldest first."""
+    kept = glob.glob(os.path.join(case, "log.lammps.[0-9]*"))
+    kept = sorted((p for p in kept if p.rsplit(".", 1)[1].isdigit()), key=lambda p: int(p.rsplit(".", 1)[1]))
     path = os.path.join(case, "log.lammps")
-    if not os.path.exists(path):
-        return None
-    cols = None
-    for line in open(path, errors="replace"):
-        w = line.split()
-        if "Step" in w and "Time" in w:
-            cols = (w.index("Step"), w.index("Time"), len(w))
-            continue
-        # a thermo row: as many numbers as the header has columns (warnings in between are skipped)
-        if cols and len(w) == cols[2] and w[0].isdigit():
-            try:
-                s, t = int(w[cols[0]]), float(w[cols[1]])
-            except ValueError:
+    return kept + ([path] if os.path.exists(path) else [])
+
+
+def step_time_map(case):
+    """(steps, times) from the thermo tables with Step and Time columns of log.lammps and the
+    logs of the runs it resumed (a step in several: the latest log's time)."""
+    at = {}
+    for path in run_logs(case):
+        cols = None
+        for line in open(path, errors="replace"):
+            w = line.split()
+            if "Step" in w and "Time" in w:
+                cols = (w.index("Step"), w.index("Time"), len(w))
                 continue
-            steps.append(s)
-            times.append(t)
-    if len(steps) < 2:
+            # a thermo row: as many numbers as the header has columns (warnings in between are skipped)
+            if cols and len(w) == cols[2] and w[0].isdigit():
+                try:
+                    at[int(w[cols[0]])] = float(w[cols[1]])
+                except ValueError:
+                    continue
+    if len(at) < 2:
         return None
-    s, t = np.array(steps), np.array(times)
-    order = np.argsort(s, kind="stable")
-    return s[order], t[order]
+    s = np.array(sorted(at))
+    return s, np.array([at[k] for k in s])
 
 
 def fixed_timestep(case):
