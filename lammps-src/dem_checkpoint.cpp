@@ -32,7 +32,6 @@ namespace meltdem {
 namespace {
 
 constexpr const char *kState = "state";
-constexpr const char *kCommands = "commands";
 constexpr const char *kComplete = "complete";
 constexpr const char *kFixId = "meltdem_checkpoint";
 
@@ -213,7 +212,7 @@ class CheckpointedInput {
     for (const InputCommand &c : commands)
       if (c.name() == "run" && ++run_index == at.run_index && c.text.find('$') == std::string::npos)
         check_run_unchanged(c, at);
-    read_expanded(ck + "/" + kCommands, commands);
+    expanded_ = read_executed_commands(ck + "/" + LammpsCouplingHost::kCommandsFile, commands);
     replay_ = std::make_unique<InputReplay>(ck + "/" + FixPowderCheckpoint::kRestartFile,
                                             read_output_sizes(ck + "/" + LammpsCouplingHost::kOutputsFile));
     if (lmp_->comm->me == 0) {
@@ -248,27 +247,6 @@ class CheckpointedInput {
            ", the run of the checkpoint at step " + std::to_string(at.end) +
            " (the input changed since). A resume continues the run as it was started: restore its step "
            "count, or add another run command after it to run longer");
-  }
-
-  // the commands as they were executed before the checkpoint (written by write_expanded); a
-  // record whose command the input no longer holds as written is left out
-  void read_expanded(const std::string &file, const std::vector<InputCommand> &commands)
-  {
-    std::ifstream in(file);
-    std::string index, original, expanded;
-    while (std::getline(in, index) && std::getline(in, original) && std::getline(in, expanded)) {
-      const std::size_t i = std::strtoull(index.c_str(), nullptr, 10);
-      if (i < commands.size() && commands[i].text == original) expanded_[i] = expanded;
-    }
-  }
-
-  void write_expanded(const std::string &file) const
-  {
-    std::ofstream os(file, std::ios::trunc);
-    for (std::size_t i = 0; i < expanded_.size(); ++i)
-      if (!expanded_[i].empty()) os << i << '\n' << (*commands_)[i].text << '\n' << expanded_[i] << '\n';
-    os.close();
-    if (!os) throw LammpsSetupError("cannot write " + file + ": " + std::strerror(errno));
   }
 
   // a run command of the input as written, with the checkpoint fix armed for it
@@ -331,7 +309,7 @@ class CheckpointedInput {
     if (lmp_->comm->me == 0) {
       try {
         write_output_sizes(ck + "/" + LammpsCouplingHost::kOutputsFile, sizes_);
-        write_expanded(ck + "/" + kCommands);
+        write_executed_commands(ck + "/" + LammpsCouplingHost::kCommandsFile, *commands_, expanded_);
         const Update *u = lmp_->update;
         char t[64];
         std::snprintf(t, sizeof t, "%a", u->atime + double(u->ntimestep - u->atimestep) * u->dt);

@@ -12,6 +12,7 @@
 #include <iterator>
 #include <cerrno>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <sstream>
@@ -152,6 +153,28 @@ std::string substituted(LAMMPS *lmp, const std::string &text)
   lmp->memory->sfree(str);
   lmp->memory->sfree(work);
   return out;
+}
+
+void write_executed_commands(const std::string &file, const std::vector<InputCommand> &commands,
+                             const std::vector<std::string> &executed)
+{
+  std::ofstream os(file, std::ios::trunc);
+  for (std::size_t i = 0; i < executed.size() && i < commands.size(); ++i)
+    if (!executed[i].empty()) os << i << '\n' << commands[i].text << '\n' << executed[i] << '\n';
+  os.close();
+  if (!os) throw LammpsSetupError("cannot write " + file + ": " + std::strerror(errno));
+}
+
+std::vector<std::string> read_executed_commands(const std::string &file, const std::vector<InputCommand> &commands)
+{
+  std::vector<std::string> executed(commands.size());
+  std::ifstream in(file);
+  std::string index, original, text;
+  while (std::getline(in, index) && std::getline(in, original) && std::getline(in, text)) {
+    const std::size_t i = std::strtoull(index.c_str(), nullptr, 10);
+    if (i < commands.size() && commands[i].text == original) executed[i] = text;
+  }
+  return executed;
 }
 
 std::vector<std::string> output_files(LAMMPS *lmp, const std::vector<InputCommand> &commands)

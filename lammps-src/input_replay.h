@@ -33,6 +33,15 @@ std::vector<InputCommand> read_input_commands(const std::string &file);
 // the command's text with the instance's variables substituted
 std::string substituted(LAMMPS_NS::LAMMPS *lmp, const std::string &text);
 
+// The commands as they were executed, variables substituted (executed[i] for commands[i]; empty:
+// not executed, or a run): a checkpoint records them, so that a resume replays what ran, with
+// its $(...) and ${...} as they were then, not as they evaluate on the restart. Reading gives
+// empty strings where there is no record or the input no longer holds the command as written.
+// (write: throws LammpsSetupError on a failed write)
+void write_executed_commands(const std::string &file, const std::vector<InputCommand> &commands,
+                             const std::vector<std::string> &executed);
+std::vector<std::string> read_executed_commands(const std::string &file, const std::vector<InputCommand> &commands);
+
 // Files the commands write to, which a resume must continue: dump to one file, fix ave/*
 // file, fix print file/append. Names with the instance's current variables substituted.
 std::vector<std::string> output_files(LAMMPS_NS::LAMMPS *lmp, const std::vector<InputCommand> &commands);

@@ -111,6 +111,7 @@ struct LammpsCouplingHost::Impl {
   // the input's commands (empty, with the reason, when it cannot be replayed), its output
   // files, and the replay of a resumed run
   std::vector<InputCommand> commands;
+  std::vector<std::string> executed;  // each command as executed (write_executed_commands)
   std::string not_replayable;
   std::unique_ptr<InputReplay> replay;
   // the input's output files, and their sizes before the outputs of the last step of the
@@ -154,17 +155,35 @@ LammpsCouplingHost::LammpsCouplingHost(MPI_Comm comm, const std::string &input_f
     if (!restart_file.empty()) throw;
     impl_->not_replayable = e.what();
   }
-  if (restart_file.empty())
+  if (restart_file.empty() && !impl_->not_replayable.empty())
     lammps_call(comm, impl_->me, "the LAMMPS input " + input_file, [&] { lmp->input->file(input_file.c_str()); });
-  else {
+  else if (restart_file.empty()) {
+    // command by command, each recorded as executed (a checkpoint keeps them for the replay)
+    impl_->executed.assign(impl_->commands.size(), std::string());
+    for (std::size_t i = 0; i < impl_->commands.size(); ++i) {
+      const InputCommand &c = impl_->commands[i];
+      lammps_call(comm, impl_->me, c.text, [&] {
+        if (c.name() != "run") impl_->executed[i] = substituted(lmp, c.text);
+        lmp->input->one(c.text.c_str());
+      });
+    }
+  } else {
     const std::string dir = restart_file.substr(0, restart_file.find_last_of('/') + 1);
     impl_->replay = std::make_unique<InputReplay>(restart_file, read_output_sizes(dir + kOutputsFile));
+    impl_->executed = read_executed_commands(dir + kCommandsFile, impl_->commands);
     if (impl_->me == 0) impl_->replay->rewind_outputs();
     MPI_Barrier(comm);
     impl_->one("log " + log_file + " append");
-    for (const InputCommand &c : impl_->commands) {
+    for (std::size_t i = 0; i < impl_->commands.size(); ++i) {
+      const InputCommand &c = impl_->commands[i];
       if (c.name() == "run") continue;  // the coupling drives the run
-      for (const std::string &line : impl_->replay->before_checkpoint(lmp, c)) impl_->one(line);
+      // replayed as it was executed: its $(...) and ${...} as they were then, not now
+      InputCommand as_run = c;
+      if (impl_->executed[i].empty())
+        lammps_call(comm, impl_->me, c.text, [&] { impl_->executed[i] = substituted(lmp, c.text); });
+      else
+        as_run.text = impl_->executed[i];
+      for (const std::string &line : impl_->replay->before_checkpoint(lmp, as_run)) impl_->one(line);
     }
     lmp->update->atime = restart_time;
     lmp->update->atimestep = lmp->update->ntimestep;
@@ -344,6 +363,7 @@ void LammpsCouplingHost::write_checkpoint(const std::string &dir)
   command("write_restart " + dir + "/" + kRestartFile);
   if (impl_->me != 0 || !impl_->not_replayable.empty()) return;
   write_output_sizes(dir + "/" + kOutputsFile, impl_->sizes);
+  write_executed_commands(dir + "/" + kCommandsFile, impl_->commands, impl_->executed);
 }
 
 void LammpsCouplingHost::write_particles(const std::string &file)

@@ -98,6 +98,7 @@ class LammpsCouplingHost {
   // kOutputsFile (throws LammpsSetupError when it cannot be written).
   static constexpr const char *kRestartFile = "lammps.restart";
   static constexpr const char *kOutputsFile = "lammps.outputs";
+  static constexpr const char *kCommandsFile = "lammps.commands";  // the input's commands as executed
   void write_checkpoint(const std::string &dir);
   // between intervals: every particle as a LAMMPS custom dump (id type x y z vx vy vz radius
   // mass and fix powder/melt's temperature and melted fraction), the simulated time in it

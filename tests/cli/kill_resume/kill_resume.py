@@ -9,7 +9,10 @@ killed (SIGKILL to its process group, as a batch system would) as soon as its fi
 Reference: the uninterrupted run. The ledger's final totals and cumulative errors must agree to
 round-off (mass, enthalpy: 1e-12 relative; momentum: 1e-6 of the largest momentum, since the
 momentum of this case is a small difference of large drag impulses), the ledger must have the
-same rows, and the particles at the end the same positions (1e-9 of the box).
+same rows, and the particles at the end the same positions (1e-9 of the box). The LAMMPS input
+gets 'variable t0 equal $(time)' (0 when the input is read) and a fix print of it: the resumed run
+prints the t0 of the uninterrupted run (a checkpoint records each command as executed; the replay
+on the restart evaluated $(time) anew: 3e-06).
 """
 import csv
 import os
@@ -70,6 +73,8 @@ def main():
     set_entry(base, "endTime", repr(END))
     set_entry(base, "writeInterval", repr(WRITE))
     set_entry(base, "writeFormat", "binary")
+    with open(os.path.join(base, "in.particles"), "a") as f:
+        f.write('\nvariable t0 equal $(time)\nfix t0print all print 100 "t0 ${t0}" file t0.txt screen no\n')
     whole, killed = os.path.join(work, "whole"), os.path.join(work, "killed")
     shutil.copytree(base, whole)
     shutil.copytree(base, killed)
@@ -114,6 +119,11 @@ def main():
         ok &= check_absolute(TEST, f"final system momentum {c} / largest |momentum|, resumed vs uninterrupted",
                              float(last_b[f"mom_{c}_total"]) / p_scale, float(last_a[f"mom_{c}_total"]) / p_scale,
                              1e-6)
+    t0a, t0b = ([float(ln.split()[1]) for ln in open(os.path.join(c, "t0.txt")) if ln.startswith("t0 ")]
+                for c in (whole, killed))
+    ok &= check_absolute(TEST, "lines of the fix print of t0, resumed vs uninterrupted", len(t0b), len(t0a), 0)
+    ok &= check_absolute(TEST, "the $(time) of the input: largest t0 printed by the resumed run vs the uninterrupted "
+                         "run's [s]", max(t0b, default=float("nan")), max(t0a, default=float("nan")), 0)
     xa, xb = particles(whole, "9e-06"), particles(killed, "9e-06")
     ok &= check_absolute(TEST, "particles at the end, resumed vs uninterrupted", len(xb), len(xa), 0)
     if len(xa) == len(xb):
