@@ -41,6 +41,8 @@ struct DemState {
   int run_index = -1;
   long long end = 0, start = 0, stop = 0;
   double time = 0;
+  std::vector<long long> if_runs;  // the if commands (indices) that executed a run
+  long long inside_if = -1;        // the if command whose run wrote the checkpoint
 };
 
 std::vector<long long> complete_steps(const std::string &dir)
@@ -127,7 +129,7 @@ class CheckpointedInput {
         run_command(run_index, c);
       else {
         expanded_[i] = substituted(lmp_, c.text);
-        lmp_->input->one(c.text);
+        execute_command(i, c);
         note(c);
       }
     }
@@ -147,6 +149,9 @@ class CheckpointedInput {
   // substituted; a checkpoint records them, empty for runs and commands not yet reached)
   const std::vector<InputCommand> *commands_ = nullptr;
   std::vector<std::string> expanded_;
+  // the if commands that executed a run, and the one executing now (-1: none)
+  std::vector<long long> if_runs_;
+  long long inside_if_ = -1;
   // the output files of the dump and fix commands executed so far (named between runs:
   // the variables of later ones may not exist yet), and their sizes before the outputs of
   // the checkpoint step
@@ -169,19 +174,6 @@ class CheckpointedInput {
         fail("Cannot resume " + c.where + ": fix " + c.words[1] +
              " pour keeps no restart state, so a resumed run would pour its particles again; use fix "
              "powder/insert (it resumes), or run the case again from the start");
-      if (c.name() == "if")
-        for (std::size_t k = 2; k < c.words.size(); ++k) {
-          std::string w = c.words[k];
-          w.erase(std::remove(w.begin(), w.end(), '"'), w.end());
-          w.erase(std::remove(w.begin(), w.end(), '\''), w.end());
-          const std::vector<std::string> inner = plain_words(w);
-          if (!inner.empty() &&
-              (inner[0] == "run" || inner[0] == "minimize" || inner[0] == "include" || inner[0] == "rerun"))
-            fail("Cannot resume " + c.where + ": its if executes '" + inner[0] +
-                 "', which a resume can neither place nor replay (a checkpoint counts the input's own run "
-                 "commands); run the case again from the start, or write the input without " +
-                 inner[0] + " inside if");
-        }
     }
     const std::vector<long long> steps = complete_steps(dir_);
     if (steps.empty())
@@ -205,8 +197,13 @@ class CheckpointedInput {
         at.time = std::strtod(value.c_str(), nullptr), ++found;
       else if (key == "every")
         every_ = std::atoll(value.c_str()), ++found;
+      else if (key == "if_run")
+        at.if_runs.push_back(std::atoll(value.c_str()));
+      else if (key == "inside_if")
+        at.inside_if = std::atoll(value.c_str());
     }
     if (found != 6) fail("Cannot resume: the checkpoint " + ck + "/" + kState + " is unreadable");
+    check_no_if_run(commands, at);
     // before any output is cut back (one with variables: when they are known, at the run)
     int run_index = -1;
     for (const InputCommand &c : commands)
@@ -227,6 +224,45 @@ class CheckpointedInput {
     }
     MPI_Barrier(lmp_->world);
     return at;
+  }
+
+  // an if that executed a run (or minimize) before the checkpoint would run it again when
+  // replayed, and a checkpoint written during such a run does not know where the input stood
+  void check_no_if_run(const std::vector<InputCommand> &commands, const DemState &at)
+  {
+    auto stop = [&](long long i, const std::string &why) {
+      const std::string where = i >= 0 && i < (long long)commands.size() ? commands[i].where : "an if command";
+      fail("Cannot resume " + where + ": " + why +
+           " (a checkpoint counts the input's own run commands); run the case again from the start, or write "
+           "the input without a run inside if");
+    };
+    if (at.inside_if >= 0) stop(at.inside_if, "the checkpoint was written during the run its if executed");
+    int run_index = -1;
+    for (std::size_t i = 0; i < commands.size(); ++i) {
+      if (commands[i].name() == "run" && ++run_index == at.run_index) break;
+      if (std::find(at.if_runs.begin(), at.if_runs.end(), (long long)i) != at.if_runs.end())
+        stop(i, "its if executed a run before the checkpoint, which the replay would run again");
+    }
+  }
+
+  // a command of the input; for an if, whether it executed a run (a run or minimize sets the
+  // first step of the run: set to -1 before, it tells)
+  void execute_command(std::size_t i, const InputCommand &c)
+  {
+    if (c.name() != "if") {
+      lmp_->input->one(c.text);
+      return;
+    }
+    Update *u = lmp_->update;
+    const bigint first = u->firststep;
+    u->firststep = -1;
+    inside_if_ = (long long)i;
+    lmp_->input->one(c.text);
+    inside_if_ = -1;
+    if (u->firststep != -1)
+      if_runs_.push_back((long long)i);
+    else
+      u->firststep = first;
   }
 
   // the run in progress at the checkpoint, as the input now writes it, must end where it did:
@@ -316,6 +352,8 @@ class CheckpointedInput {
         std::ofstream os(ck + "/" + kState, std::ios::trunc);
         os << "run_index " << at_.run_index << "\nend " << at_.end << "\nstart " << at_.start << "\nstop " << at_.stop
            << "\ntime " << t << "\nevery " << every_ << '\n';
+        for (long long i : if_runs_) os << "if_run " << i << '\n';
+        if (inside_if_ >= 0) os << "inside_if " << inside_if_ << '\n';
         os.close();
         if (!os) throw LammpsSetupError("cannot write " + ck + "/" + kState + ": " + std::strerror(errno));
         std::ofstream done(ck + "/" + kComplete, std::ios::trunc);

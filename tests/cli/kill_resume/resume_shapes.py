@@ -10,7 +10,10 @@ the latest checkpoint of a run that ended (the replay of the input is the same a
              records each command as executed), not one evaluated on the restart;
   longer     the run in progress given more steps before the resume: stops, naming the command
              and both ends (a resume continues the run as it started);
-  if-run     a run inside an if: stops, naming it (a checkpoint counts the input's own runs);
+  if-run     an if that executed a run before the checkpoint: stops, naming it (a checkpoint
+             counts the input's own runs; the replay would run it again); a checkpoint written
+             during the run of an if: stops, naming it; an if whose run was not executed (its
+             condition false, as powder-spread's rough-base block on a bare plate) resumes;
   np2        'ended' on 2 ranks, three times: the merged fix ave/time rows complete every time
              (a rank removing the scratch copy before rank 0 merged it lost the last row);
   frames     the frame times meltdem post gives after a resume (the logs as meltdem run keeps
@@ -130,16 +133,27 @@ def main():
                          int(len(err) == 1 and all(w in err[0] for w in ("run 15000", "25000", "20000"))), 1, 0)
     ok &= check_absolute(TEST, "longer: the outputs untouched (rows)", len(rows(case)), len(before_rows), 0)
 
-    # if-run: a run inside an if
-    case = case_with(work, "if_run", "run 5000\nif \"1 > 0\" then \"run 5000\"\nrun 5000\n")
-    rc, out = lmp(case)
-    ok &= check_absolute(TEST, "if-run: the run's exit code", rc, 0, 0)
-    rc, out = lmp(case, resume=True)
-    err = error_lines(out)
-    print(f"{TEST}: if-run: rc {rc}: {err[:1]}")
-    ok &= check_absolute(TEST, "if-run: the resume stops (exit code 1)", rc, 1, 0)
-    ok &= check_absolute(TEST, "if-run: one ERROR naming the if and its run (1 = yes)",
-                         int(len(err) == 1 and "its if executes 'run'" in err[0] and "in.x:" in err[0]), 1, 0)
+    # if-run: an if that ran a run before the checkpoint; a checkpoint written during the if's run;
+    # an if whose run did not execute
+    for name, runs, words in (
+            ("before", "run 5000\nif \"1 > 0\" then \"run 5000\"\nrun 5000\n", ["its if executed a run"]),
+            ("during", "run 5000\nif \"1 > 0\" then \"run 10000\"\n", ["written during the run its if executed"]),
+            ("not executed", "run 5000\nif \"1 > 2\" then \"run 5000\"\nrun 5000\n", None)):
+        case = case_with(work, "if_run_" + name.replace(" ", "_"), runs)
+        rc, out = lmp(case)
+        ok &= check_absolute(TEST, f"if-run, {name}: the run's exit code", rc, 0, 0)
+        n0 = len(rows(case))
+        rc, out = lmp(case, resume=True)
+        err = error_lines(out)
+        print(f"{TEST}: if-run, {name}: rc {rc}: {err[:1]}")
+        if words:
+            ok &= check_absolute(TEST, f"if-run, {name}: the resume stops (exit code 1)", rc, 1, 0)
+            ok &= check_absolute(TEST, f"if-run, {name}: one ERROR naming the if (1 = yes)",
+                                 int(len(err) == 1 and all(w in err[0] for w in words) and "in.x:" in err[0]), 1, 0)
+        else:
+            ok &= check_absolute(TEST, f"if-run, {name}: the resume's exit code", rc, 0, 0)
+            ok &= check_absolute(TEST, f"if-run, {name}: fix ave/time rows after the resume vs before", len(rows(case)),
+                                 n0, 0)
 
     # np2: the ended run resumed on 2 ranks, three times
     case = case_with(work, "np2", "run 10000\n")
