@@ -98,15 +98,9 @@ class CheckpointedInput {
       const bool run = c.name() == "run";
       if (run) ++run_index;
       if (resume && run_index < at.run_index) {
-        if (!run) {
-          // replayed as it was executed: its $(...) and ${...} as they were then, not now
-          InputCommand as_run = c;
-          if (expanded_[i].empty())
-            expanded_[i] = substituted(lmp_, c.text);
-          else
-            as_run.text = expanded_[i];
-          for (const std::string &line : replay_->before_checkpoint(lmp_, as_run)) lmp_->input->one(line);
-        }
+        // replayed as it was executed: its $(...) and ${...} as they were then, not now
+        if (!run)
+          for (const std::string &line : replay_->before_checkpoint(lmp_, c, expanded_[i])) lmp_->input->one(line);
         note(c);
         continue;
       }

@@ -295,6 +295,17 @@ std::vector<std::string> InputReplay::before_checkpoint(LAMMPS *lmp, const Input
   return {command.text};
 }
 
+std::vector<std::string> InputReplay::before_checkpoint(LAMMPS *lmp, const InputCommand &command, std::string &executed)
+{
+  if (executed.empty()) {
+    executed = substituted(lmp, command.text);
+    return before_checkpoint(lmp, command);
+  }
+  InputCommand as_run = command;
+  as_run.text = executed;
+  return before_checkpoint(lmp, as_run);
+}
+
 void InputReplay::merge_outputs()
 {
   for (Redirect &r : redirects_) {

@@ -69,6 +69,11 @@ class InputReplay {
   // commands, in order (the variables of file names are substituted with it).
   std::vector<std::string> before_checkpoint(LAMMPS_NS::LAMMPS *lmp, const InputCommand &command);
 
+  // before_checkpoint of the command as it was executed (executed: its record from
+  // read_executed_commands; without one, the command as written now, recorded into it)
+  std::vector<std::string> before_checkpoint(LAMMPS_NS::LAMMPS *lmp, const InputCommand &command,
+                                             std::string &executed);
+
   // append what the redirected fix ave/* files wrote since the last call to their files
   // (call on one rank at each checkpoint and at the end)
   void merge_outputs();

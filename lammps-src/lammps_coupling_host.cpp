@@ -178,12 +178,10 @@ LammpsCouplingHost::LammpsCouplingHost(MPI_Comm comm, const std::string &input_f
       const InputCommand &c = impl_->commands[i];
       if (c.name() == "run") continue;  // the coupling drives the run
       // replayed as it was executed: its $(...) and ${...} as they were then, not now
-      InputCommand as_run = c;
-      if (impl_->executed[i].empty())
-        lammps_call(comm, impl_->me, c.text, [&] { impl_->executed[i] = substituted(lmp, c.text); });
-      else
-        as_run.text = impl_->executed[i];
-      for (const std::string &line : impl_->replay->before_checkpoint(lmp, as_run)) impl_->one(line);
+      std::vector<std::string> lines;
+      lammps_call(comm, impl_->me, c.text,
+                  [&] { lines = impl_->replay->before_checkpoint(lmp, c, impl_->executed[i]); });
+      for (const std::string &line : lines) impl_->one(line);
     }
     lmp->update->atime = restart_time;
     lmp->update->atimestep = lmp->update->ntimestep;
