@@ -538,41 +538,22 @@ Foam::functionObjects::meltdemBalance::meltdemBalance
 bool Foam::functionObjects::meltdemBalance::read(const dictionary& dict)
 {
     fvMeshFunctionObject::read(dict);
-    alphaName_ = dict.getOrDefault<word>("alpha", "alpha." + metalName_);
-    TName_ = dict.getOrDefault<word>("T", "T");
-    UName_ = dict.getOrDefault<word>("U", "U");
-    phiName_ = dict.getOrDefault<word>("phi", "phi");
-    pName_ = dict.getOrDefault<word>("p", "p");
-    fLName_ = dict.getOrDefault<word>("liquidFraction", "liquidFraction");
-    laserName_ = dict.getOrDefault<word>("laserHeatSource", "laserHeatSource");
-    evapName_ =
-        dict.getOrDefault<word>("evaporationHeatLoss", "evaporationHeatLoss");
-
-    renamed_ = dict;
-    renamed_.clear();
-    const word names[] =
+    // each field name, its entry kept when it names another field than the default
+    renamed_ = dictionary(dict.name());
+    const auto fieldName = [&](const word& key, const word& def)
     {
-        alphaName_, TName_, UName_, phiName_, pName_, fLName_, laserName_,
-        evapName_
+        const word field = dict.getOrDefault<word>(key, def);
+        if (field != def) renamed_.add(*dict.findEntry(key));
+        return field;
     };
-    const word keys[] =
-    {
-        "alpha", "T", "U", "phi", "p", "liquidFraction", "laserHeatSource",
-        "evaporationHeatLoss"
-    };
-    const word defaults[] =
-    {
-        "alpha." + metalName_, "T", "U", "phi", "p", "liquidFraction",
-        "laserHeatSource", "evaporationHeatLoss"
-    };
-    for (label i = 0; i < 8; ++i)
-    {
-        const entry* eptr = dict.findEntry(keys[i], keyType::LITERAL);
-        if (eptr && names[i] != defaults[i])
-        {
-            renamed_.add(*eptr);
-        }
-    }
+    alphaName_ = fieldName("alpha", "alpha." + metalName_);
+    TName_ = fieldName("T", "T");
+    UName_ = fieldName("U", "U");
+    phiName_ = fieldName("phi", "phi");
+    pName_ = fieldName("p", "p");
+    fLName_ = fieldName("liquidFraction", "liquidFraction");
+    laserName_ = fieldName("laserHeatSource", "laserHeatSource");
+    evapName_ = fieldName("evaporationHeatLoss", "evaporationHeatLoss");
     return true;
 }
 
