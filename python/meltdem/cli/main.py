@@ -125,3 +125,9 @@ def main(argv=None):
     except KeyboardInterrupt:
         print("\nmeltdem: interrupted", file=sys.stderr)
         return 130
+
+
+if __name__ == "__main__":          # `python3 -m meltdem.cli.main`, as tools/meltdem does
+    from .. import paths
+    paths.set_tool_environment()
+    sys.exit(main())

@@ -1,8 +1,10 @@
 """`meltdem list` names every example folder (scene.py or a LAMMPS in.* input), with its kind
 (DEM-only / coupled / continuum-only) and its README title."""
 import os
+import subprocess
 import sys
 
+from meltdem import paths
 from meltdem.testing.cli import SRC, check_absolute, meltdem
 
 T = "cli.list"
@@ -24,4 +26,10 @@ right = sum(1 for n, k in kinds.items() if n in rows and k in rows[n])
 ok &= check_absolute(T, "kinds of powder-pour / slm-track / mjt-droplets", right, len(kinds), 0)
 no_title = [n for n in listed if "(no README)" in rows[n]]
 ok &= check_absolute(T, "examples without a README title", len(no_title), 0, 0)
+# the package runs as the command too: `python3 -m meltdem` and `python3 -m meltdem.cli.main`
+for module in ("meltdem", "meltdem.cli.main"):
+    p = subprocess.run(["/usr/bin/python3", "-m", module, "list"], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                       text=True, env=paths.tool_env())
+    ok &= check_absolute(T, f"`python3 -m {module} list` prints what `meltdem list` prints (1 = yes)",
+                         int(p.stdout == out), 1, 0)
 sys.exit(0 if ok else 1)
