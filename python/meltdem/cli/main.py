@@ -116,12 +116,12 @@ def main(argv=None):
     except StepError as e:
         print(f"meltdem: ERROR: {e}", file=sys.stderr, flush=True)
         return 1
+    except BrokenPipeError:          # `meltdem list | head`: a reader that stopped is no error
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        return 0
     except OSError as e:
         print(f"meltdem: ERROR: {os_error_text(e)}", file=sys.stderr, flush=True)
         return 1
-    except BrokenPipeError:          # `meltdem list | head`
-        sys.stdout = open(os.devnull, "w")
-        return 0
     except KeyboardInterrupt:
         print("\nmeltdem: interrupted", file=sys.stderr)
         return 130

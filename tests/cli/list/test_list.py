@@ -5,7 +5,7 @@ import subprocess
 import sys
 
 from meltdem import paths
-from meltdem.testing.cli import SRC, check_absolute, meltdem
+from meltdem.testing.cli import SRC, check_absolute, meltdem, meltdem_command
 
 T = "cli.list"
 ex = os.path.join(SRC, "examples")
@@ -32,4 +32,12 @@ for module in ("meltdem", "meltdem.cli.main"):
                        text=True, env=paths.tool_env())
     ok &= check_absolute(T, f"`python3 -m {module} list` prints what `meltdem list` prints (1 = yes)",
                          int(p.stdout == out), 1, 0)
+# `meltdem list | head -c 10`: a reader that closes the pipe early is no error (was "ERROR: Broken pipe", rc 1)
+broken = 0
+for _ in range(5):
+    p = subprocess.Popen(meltdem_command() + ["list"], stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    p.stdout.close()
+    err = p.stderr.read().decode()
+    broken += int(p.wait() != 0 or "ERROR" in err)
+ok &= check_absolute(T, "runs of 5 with the pipe closed early that fail or print an error", broken, 0, 0)
 sys.exit(0 if ok else 1)
