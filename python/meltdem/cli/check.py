@@ -393,11 +393,41 @@ def check_laser(d, mesh, rep, rel, entries):
         rep.ok(f"{rel}: laser path ({len(pts)} point(s)) inside the mesh")
 
 
+def field_text(path, size=-1):
+    """A field file's text (its first SIZE characters), gzipped (writeCompression on) or not."""
+    if path.endswith(".gz"):
+        import gzip
+        with gzip.open(path, "rt", errors="replace") as f:
+            return f.read(size)
+    with open(path, errors="replace") as f:
+        return f.read(size)
+
+
+def start_folder(case, ctl, rep):
+    """The time folder a run starts from by controlDict's startFrom (startTime, firstTime or
+    latestTime), as a name relative to the case (processor0/<time> for a decomposed case), or None."""
+    how = fd.word(ctl, "startFrom") or "startTime"
+    if how not in ("startTime", "firstTime", "latestTime"):
+        rep.bad("system/controlDict", f"startFrom {how} unknown (startTime, firstTime or latestTime)")
+        return None
+    for where in ("", "processor0"):
+        times = fd.time_dirs(os.path.join(case, where))
+        if how == "startTime":
+            start = fd.number(ctl, "startTime")
+            times = [t for t in times if start is not None and float(t) == start]
+        if times:
+            return os.path.join(where, times[-1] if how == "latestTime" else times[0])
+    start = fd.number(ctl, "startTime")
+    rep.bad("system/controlDict", f"startFrom {how}" + (f"; startTime {start:g}" if how == "startTime" else "")
+            + f": no such time folder in {case} (the start fields)")
+    return None
+
+
 def field_values(path):
     """(internal and boundary values) of an ASCII field file as one list of floats, 'binary' for a
     binary one, or a text naming what is not a number."""
     import re
-    text = open(path, errors="replace").read()
+    text = field_text(path)
     if re.search(r"format\s+binary", text[:4096]):
         return "binary"
     vals = []
@@ -442,7 +472,8 @@ def check_foam(case, rep):
                 rep.bad("system/controlDict", f"{k} is not a number ({' '.join(map(str, fd.value(ctl, k)))})"
                         + ("; a missing ';' after it?" if len(fd.value(ctl, k)) > 1 else ""))
         e, s = fd.number(ctl, "endTime"), fd.number(ctl, "startTime")
-        if e is not None and s is not None and e <= s:
+        how = fd.word(ctl, "startFrom") or "startTime"
+        if e is not None and s is not None and e <= s and how == "startTime":
             rep.bad("system/controlDict", f"endTime {e:g} is not after startTime {s:g}")
         rep.ok("system/controlDict: " + ", ".join(CONTROL))
     sch = _read(case, "system/fvSchemes", rep)
@@ -541,14 +572,18 @@ def check_foam(case, rep):
             check_laser(md, mesh, rep, rel, table["terms"]["laser"]["entries"]["laser"])
 
     fields = ["alpha.metal", "U", "p_rgh"] + (["T"] if physics.get("energy") else [])
-    for f in fields:
-        rel0 = f"0/{f}"
+    start = start_folder(case, ctl, rep) if ctl is not None else "0"
+    for f in fields if start is not None else []:
+        rel0 = os.path.join(start, f)
+        if not os.path.isfile(os.path.join(case, rel0)) and os.path.isfile(os.path.join(case, rel0 + ".gz")):
+            rel0 += ".gz"
         if not os.path.isfile(os.path.join(case, rel0)):
-            if not os.path.isdir(os.path.join(case, "processor0", "0")):
-                rep.bad(rel0, "file missing")
+            rep.bad(rel0, "file missing")
+            continue
+        if start.startswith("processor"):
             continue
         # the header only: a field's values can be millions of numbers
-        head = open(os.path.join(case, rel0), errors="replace").read(1 << 16).split("internalField")[0]
+        head = field_text(os.path.join(case, rel0), 1 << 16).split("internalField")[0]
         try:
             d = fd.parse(head)
         except fd.FoamDictError as e:
@@ -562,7 +597,8 @@ def check_foam(case, rep):
             rep.bad(rel0, f"dimensions [{got}] are not the SI dimensions of {f} [{DIMENSIONS[f]}]")
         if f in FIELD_RANGE:
             check_field_range(case, rel0, FIELD_RANGE[f], rep)
-    rep.ok("0/: " + ", ".join(fields) + " (SI dimensions)")
+    if start is not None:
+        rep.ok(f"{start}/: " + ", ".join(fields) + " (SI dimensions)")
 
     if physics.get("particles") and md is not None:
         pd = md.get("particles")

@@ -243,14 +243,15 @@ def decompose(case, np_, mesh_box):
     tool(["decomposePar", "-force"], case, "log.decomposePar")
 
 
-def latest_checkpoint(case):
-    """(T name, where the OpenFOAM fields are) of the latest complete checkpoint, or raises
-    StepError naming what is missing."""
+def latest_checkpoint(case, at=None):
+    """(T name, where the OpenFOAM fields are) of the latest complete checkpoint (the one at time
+    AT when given), or raises StepError naming what is missing."""
     rdir = os.path.join(case, RESTART_DIR)
     if not os.path.isdir(rdir):
         raise StepError(f"cannot resume: no checkpoint folder {rdir} (the solver writes "
                         f"{RESTART_DIR}/<time>/ at every write time)")
-    complete = [t for t in fd.time_dirs(rdir) if os.path.isfile(os.path.join(rdir, t, "complete"))]
+    complete = [t for t in fd.time_dirs(rdir) if os.path.isfile(os.path.join(rdir, t, "complete"))
+                and (at is None or float(t) == at)]
     if not complete:
         raise StepError(f"cannot resume: no complete checkpoint in {rdir} (no <time>/complete: the run "
                         f"was stopped before its first write time finished)")
@@ -263,6 +264,30 @@ def latest_checkpoint(case):
     where = "processor0/" if proc else ""
     raise StepError(f"cannot resume: checkpoints {', '.join(complete)} in {rdir} have no OpenFOAM time "
                     f"folder {where}<time> in {case}")
+
+
+def start_as_written(case, cd):
+    """The time a run starts from by system/controlDict's startFrom (startTime, firstTime or
+    latestTime: the case's time folders, processor0's when the case has none), as meltdemFoam does."""
+    how = fd.word(cd, "startFrom") or "startTime"
+    if how not in ("firstTime", "latestTime"):
+        return fd.number(cd, "startTime") or 0.0
+    folder = case
+    if not fd.time_dirs(case) and os.path.isdir(os.path.join(case, "processor0")):
+        folder = os.path.join(case, "processor0")
+    times = fd.time_dirs(folder)
+    if not times:
+        raise StepError(f"startFrom {how} in {os.path.join(case, 'system', 'controlDict')}: no time folder in {folder}")
+    return float(times[-1] if how == "latestTime" else times[0])
+
+
+def complete_checkpoint_at(case, t):
+    """Whether the case holds a complete checkpoint at time t with its OpenFOAM time folder."""
+    try:
+        latest_checkpoint(case, at=t)
+        return True
+    except StepError:
+        return False
 
 
 START_FILE = os.path.join("system", "meltdemStartAsWritten.json")
@@ -293,14 +318,21 @@ def restore_start_time(case):
 
 def _set_control(case, entries):
     cd = os.path.join(case, "system", "controlDict")
+
+    def as_set():
+        d = fd.read(cd)
+        return all(" ".join(map(str, fd.value(d, k) or [])) == str(v) for k, v in entries.items())
+
     try:
         for key, val in entries.items():
             subprocess.run(["foamDictionary", "-entry", key, "-set", str(val), cd], check=True,
                            stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, env=env(), cwd=case)
     except (OSError, subprocess.CalledProcessError):
+        pass
+    # foamDictionary writes numbers to 6 digits: a time named 1.1662673e-05 is set as written here
+    if not as_set():
         fd.set_entries(cd, entries)
-    d = fd.read(cd)
-    if any(" ".join(map(str, fd.value(d, k) or [])) != str(v) for k, v in entries.items()):
+    if not as_set():
         raise StepError(f"could not set {entries} in {cd}")
 
 
@@ -362,7 +394,7 @@ def clear_earlier_output(case, start):
     if later or os.path.isdir(rdir) or procs:
         extra = ([RESTART_DIR + "/"] if os.path.isdir(rdir) else []) + (["processor*/"] if procs else [])
         say(f"earlier output in {case} ({len(later)} time folder(s) after {start:g}"
-            f"{', ' + ', '.join(extra) if extra else ''}) is overwritten: starting from startTime {start:g}")
+            f"{', ' + ', '.join(extra) if extra else ''}) is overwritten: starting from t = {start:g} s")
         for t in later:
             shutil.rmtree(os.path.join(case, t))
         shutil.rmtree(rdir, ignore_errors=True)
@@ -376,8 +408,19 @@ def run_foam(case, np_, resume, rebuilt=False):
     t_end = fd.number(cd, "endTime")
     mesh, _ = chk.mesh_box(case, chk.Report())
     procs = processor_dirs(case)
+    resume_at = None
+    if not resume:
+        restore_start_time(case)
+        cd = fd.read(os.path.join(case, "system", "controlDict"))
+        t_written = start_as_written(case, cd)
+        # a start time with a complete checkpoint continues from it, as meltdemFoam alone does
+        if t_written > 0 and complete_checkpoint_at(case, t_written):
+            how = fd.word(cd, "startFrom") or "startTime"
+            say(f"system/controlDict starts from t = {t_written:g} s (startFrom {how}), which has a complete "
+                f"checkpoint: the run continues from it, as --resume does")
+            resume, resume_at = True, t_written
     if resume:
-        t, _, decomposed = latest_checkpoint(case)
+        t, _, decomposed = latest_checkpoint(case, at=resume_at)
         if decomposed:
             np_ = np_ if np_ > 1 else len(procs)
             if np_ != len(procs):
@@ -393,9 +436,7 @@ def run_foam(case, np_, resume, rebuilt=False):
         clear_after_checkpoint(case, t_start)
         keep_log(case, "log.meltdemFoam")
     else:
-        restore_start_time(case)
-        cd = fd.read(os.path.join(case, "system", "controlDict"))
-        t_start = fd.number(cd, "startTime") or 0.0
+        t_start = t_written
         clear_earlier_output(case, t_start)
         if rebuilt and os.path.isfile(os.path.join(case, "system", "blockMeshDict")):
             shutil.rmtree(os.path.join(case, "constant", "polyMesh"), ignore_errors=True)
