@@ -180,6 +180,20 @@ Foam::meltdem::particleHost::particleHost
         mesh.time().globalPath()/dict.getOrDefault<word>("lammpsLog", "log.lammps")
     );
     Info<< "Particles: LAMMPS input " << input << ", log " << log << endl;
+
+    // LAMMPS opens its input's files (include, read_data, dump, fix print) relative to the
+    // working folder: make it the case's, as for a run started in the case (-case DIR elsewhere)
+    if (cwd(false) != mesh.time().globalPath())
+    {
+        Info<< "Particles: working folder " << cwd(false) << " -> " << mesh.time().globalPath()
+            << " (the LAMMPS input's file names are the case's)" << endl;
+        if (!chDir(mesh.time().globalPath()))
+        {
+            FatalErrorInFunction
+                << "cannot change the working folder to the case " << mesh.time().globalPath()
+                << exit(FatalError);
+        }
+    }
     try
     {
         lammps_.reset
