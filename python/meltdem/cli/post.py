@@ -69,6 +69,9 @@ def postprocess(case_dir, example=None, fields=True, quiet=True):
             if fseries:
                 files["fields_pvd"] = os.path.relpath(fseries["pvd"], case)
                 s["field_write_times"] = len(fseries["entries"])
+                if fseries["empty_times"]:
+                    notes.append("time folder(s) without fields left out of fields.pvd (a write cut short?): "
+                                 + ", ".join(f"{t:g}" for t in fseries["empty_times"]))
             else:
                 notes.append("no OpenFOAM mesh: no fields.pvd")
         except Exception as e:

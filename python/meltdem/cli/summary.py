@@ -294,6 +294,9 @@ def fused_max(fields_series):
         if "liquidFraction" not in f or "alpha.metal" not in f:
             continue
         v = np.where(f["alpha.metal"] >= 0.5, f["liquidFraction"], 0.0)
+        if out is not None and len(v) != len(out):
+            raise ValueError("the mesh changed between written times (adaptive refinement): the per-cell "
+                             "maximum over time needs one mesh; a scene's own analysis measures its track")
         out = v if out is None else np.maximum(out, v)
     return out
 

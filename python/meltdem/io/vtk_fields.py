@@ -106,10 +106,16 @@ def convert(case, out_dir=None):
     rel = os.path.relpath(os.path.join(vtk, "fields"), case)
     out, cmd = run_foam_to_vtk(case, rel)
     entries = series_entries(out)
-    pvd_entries = [(t, f"fields/{name}") for t, name in entries]
+    # a time folder without a field (a write cut short, a folder made by hand) is no written time
+    kind, _ = layout(case)
+    folder = processor_dirs(case)[0] if kind == "parallel" else case
+    empty = {float(t) for t in time_dirs(folder) if not any(
+        os.path.isfile(os.path.join(folder, t, f)) for f in os.listdir(os.path.join(folder, t)))}
+    pvd_entries = [(t, f"fields/{name}") for t, name in entries if t not in empty]
     pvd = os.path.join(vtk, "fields.pvd")
     vtkxml.write_pvd(pvd, pvd_entries)
-    return {"pvd": pvd, "entries": pvd_entries, "layout": layout(case)[0], "command": " ".join(cmd)}
+    return {"pvd": pvd, "entries": pvd_entries, "layout": kind, "command": " ".join(cmd),
+            "empty_times": sorted(empty)}
 
 
 def internal_piece(vtm_path):
