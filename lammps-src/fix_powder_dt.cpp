@@ -317,6 +317,21 @@ void FixPowderDt::update_dt()
   out[5] = estar;
   out[6] = rhomin;
 
+  apply_dt(ceiling > 0.0 ? std::min(dt, ceiling) : dt);
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixPowderDt::set_step_ceiling(double dt_ceiling)
+{
+  ceiling = dt_ceiling;
+  if (ceiling == 0.0 && out[0] > 0.0) apply_dt(out[0]);
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixPowderDt::apply_dt(double dt)
+{
   if (dt == update->dt) return;
 
   // as fix dt/reset: book the elapsed time, then tell every style that caches dt

@@ -3,6 +3,7 @@
 
 #include "fix_powder_insert.h"
 #include "fix_powder_checkpoint.h"
+#include "fix_powder_dt.h"
 #include "input_replay.h"
 #include "fix_powder_melt.h"
 #include "lammps_version_guard.h"
@@ -327,15 +328,37 @@ void LammpsCouplingHost::set_heat_owed(const std::vector<std::int64_t> &tags, co
   impl_->melt->set_heat_owed(std::vector<tagint>(tags.begin(), tags.end()), heat);
 }
 
-void LammpsCouplingHost::advance(int n, std::vector<mc::ExchangeRecord> &records)
+int LammpsCouplingHost::advance(int n, std::vector<mc::ExchangeRecord> &records, double span)
 {
   if (n < 1) throw std::invalid_argument("LammpsCouplingHost::advance: n must be >= 1");
+  std::vector<FixPowderDt *> dt_fixes;
+  for (int i = 0; i < impl_->lmp->modify->nfix; i++)
+    if (std::strcmp(impl_->lmp->modify->fix[i]->style, "powder/dt") == 0)
+      dt_fixes.push_back(dynamic_cast<FixPowderDt *>(impl_->lmp->modify->fix[i]));
+  const double t_end = time() + span;
+  const double dt_cycle = timestep();
+  if (span > 0.0)
+    for (FixPowderDt *f : dt_fixes) f->set_step_ceiling(dt_cycle);
   impl_->melt->reset_interval();
   if (impl_->outputs_fix) impl_->outputs_fix->checkpoint_step = impl_->lmp->update->ntimestep + n;
-  const std::string cmd = "run " + std::to_string(n) + (impl_->needs_setup ? " post no" : " pre no post no");
-  impl_->one(cmd);
+  impl_->one("run " + std::to_string(n) + (impl_->needs_setup ? " post no" : " pre no post no"));
   impl_->needs_setup = false;
+  int steps = n;
+  // steps fix powder/dt shortened: made up to the span, the last one cut to end on it
+  while (span > 0.0 && t_end - time() > 1e-9 * span) {
+    const double left = t_end - time();
+    if (left < timestep()) {
+      for (FixPowderDt *f : dt_fixes) f->set_step_ceiling(left);
+      set_timestep(left);
+    }
+    if (impl_->outputs_fix) impl_->outputs_fix->checkpoint_step = impl_->lmp->update->ntimestep + 1;
+    impl_->one("run 1 pre no post no");
+    ++steps;
+  }
+  if (steps > n && timestep() != dt_cycle) set_timestep(dt_cycle);
+  for (FixPowderDt *f : dt_fixes) f->set_step_ceiling(0.0);
   impl_->melt->interval_records(records);
+  return steps;
 }
 
 std::int64_t LammpsCouplingHost::remove(const std::vector<std::int64_t> &tags)

@@ -84,8 +84,10 @@ class LammpsCouplingHost {
   void set_heat_owed(const std::vector<std::int64_t> &tags, const std::vector<double> &heat);
 
   // run n DEM steps; records: this rank's particles with their interval exchange
-  // (including particles that melted away during the interval)
-  void advance(int n, std::vector<coupling::ExchangeRecord> &records);
+  // (including particles that melted away during the interval). span > 0: the steps span
+  // exactly span seconds: fix powder/dt may not lengthen the current step meanwhile, and
+  // steps it shortened are made up by further steps, the last one cut. Returns the steps run.
+  int advance(int n, std::vector<coupling::ExchangeRecord> &records, double span = 0.0);
 
   // remove particles (any rank may list any tag; collective); returns how many went
   std::int64_t remove(const std::vector<std::int64_t> &tags);

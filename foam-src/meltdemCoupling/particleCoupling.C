@@ -304,14 +304,15 @@ void Foam::meltdem::particleCoupling::advance
     std::vector<mc::ExchangeRecord>& records = records_;
     const bool shortened = dtSub < dtDem*(1 - 1e-12);
     if (shortened) lammps.set_timestep(dtSub);
-    lammps.advance(int(n), records);
+    // the sub-cycle spans n*dtSub exactly, whatever fix powder/dt does to the DEM step meanwhile
+    const label steps = lammps.advance(int(n), records, n*dtSub);
     bounds_->widen(records);
     // back to the DEM's own step unless the input changed it meanwhile (fix powder/dt)
     if (shortened && lammps.timestep() == dtSub) lammps.set_timestep(dtDem);
     MPI_Barrier(comm);
     lammpsSeconds_ += seconds() - w0;
     t0 = seconds();
-    subSteps_ = n;
+    subSteps_ = steps;
     const scalar elapsed = lammps.time() - tLmp0;
     runTime.setDeltaT(elapsed, false);
 
