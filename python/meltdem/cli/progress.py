@@ -75,10 +75,11 @@ class LammpsProgress:
     """Step from the thermo rows after each 'Step ...' header; the run length from the echoed
     'run N' line; time = step x timestep (the 'timestep dt' line; a Time column when printed)."""
 
-    def __init__(self, log, dt=None, runs=None):
+    def __init__(self, log, dt=None, runs=None, run_dts=None):
         self.f = LogFollower(log)
         self.dt, self.run_len, self.run_start = dt, None, None
         self.runs, self.n_headers = list(runs or []), 0   # run lengths read from the input
+        self.run_dts = list(run_dts or [])                # and the timestep of each run
         self.step, self.steps, self.in_thermo, self.cols = None, 0, False, []
         self.t_col = None
         self.t0 = 0.0
@@ -107,6 +108,8 @@ class LammpsProgress:
                 # i-th thermo header belongs to the i-th run command (no loops in the input)
                 if self.n_headers < len(self.runs):
                     self.run_len = self.runs[self.n_headers]
+                if self.n_headers < len(self.run_dts) and self.run_dts[self.n_headers]:
+                    self.dt = self.run_dts[self.n_headers]
                 self.run_start = None
                 self.n_headers += 1
                 self.t_col = next((i for i, c in enumerate(w) if c in ("Time", "time", "v_t", "v_time")), None)
@@ -115,16 +118,18 @@ class LammpsProgress:
                     step = int(w[0])
                 except ValueError:
                     continue
+                # without a Time column: the time so far plus the steps since at this run's step
+                t_steps = (self.t + (step - self.step) * (self.dt or 0) if self.step is not None
+                           else step * (self.dt or 0))
                 if self.run_start is None:
                     self.run_start = step
                     if self.run_len is not None and self.run_len < 0:   # run N upto
                         self.run_len = max(-self.run_len - step, 0)
-                    self.t0 = float(w[self.t_col]) if self.t_col is not None else step * (self.dt or 0)
+                    self.t0 = float(w[self.t_col]) if self.t_col is not None else t_steps
                 if self.step is not None and step > self.step:
                     self.steps += step - self.step
                 self.step = step
-                self.t = (float(w[self.t_col]) if self.t_col is not None and len(w) > self.t_col
-                          else step * (self.dt or 0))
+                self.t = float(w[self.t_col]) if self.t_col is not None and len(w) > self.t_col else t_steps
                 if self.run_len and self.dt:
                     self.t_end = self.t0 + self.run_len * self.dt
             elif w[0] == "Loop":

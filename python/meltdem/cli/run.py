@@ -550,7 +550,7 @@ def run_dem(case, np_, resume, checkpoint_every=None):
         + (f" (fix {halt[0][1][1]} halt ends it when its condition is met: the ETA is an upper bound)" if halt else "")
         + " (log.lammps)")
     rc, wall = launch(cmd, case, "out.lammps", LammpsProgress(os.path.join(case, "out.lammps"), lmp_in.timestep(),
-                                                              runs),
+                                                              runs, lmp_in.run_timesteps()),
                       np_, wall_segments(case) if resume else [], "resumed" if resume else "run")
     if rc != 0:
         why = failure_reason(case, "log.lammps") or failure_reason(case, "out.lammps")

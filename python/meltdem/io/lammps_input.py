@@ -126,6 +126,16 @@ class LammpsInput:
         t = self.find("timestep")
         return _eval(t[-1][1][1]) if t else None
 
+    def run_timesteps(self):
+        """The timestep in effect at each run command, in order (None where not known)."""
+        out, dt = [], None
+        for _, w in self.commands:
+            if w[0] == "timestep" and len(w) > 1:
+                dt = _eval(w[1])
+            elif w[0] == "run" and len(w) > 1 and _eval(w[1]) is not None:
+                out.append(dt)
+        return out
+
     def runs(self):
         """Step counts of the run commands in order; a 'run N upto' is given as -N (up to step N)."""
         return [int(_eval(w[1])) * (-1 if "upto" in w[2:] else 1)

@@ -104,12 +104,44 @@ def step_time_map(case):
 
 
 def fixed_timestep(case):
-    """The input's 'timestep X' when the input has no variable-step fix (dt/reset, powder/dt)."""
+    """The input's 'timestep X' when the input has no variable-step fix (dt/reset, powder/dt) and
+    one step for all its runs."""
     txt = lammps_inputs(case)
     if re.search(r"^\s*fix\s+\S+\s+\S+\s+(dt/reset|powder/dt)\b", txt, re.M):
         return None
-    m = re.findall(r"^\s*timestep\s+([0-9.eE+-]+)\s*$", txt, re.M)
-    return float(m[-1]) if m else None
+    m = re.findall(r"^\s*timestep\s+(\S+)\s*$", txt, re.M)
+    try:
+        steps = {float(x) for x in m}
+    except ValueError:
+        return None
+    return steps.pop() if len(steps) == 1 else None
+
+
+def run_segments(case):
+    """[(first step, its time, dt)] of the runs of a one-file LAMMPS input that changes its
+    'timestep X' between 'run N' commands, from step 0 (no include, loop, restart, step reset or
+    variable-step fix; numbers as written), else None."""
+    inputs = glob.glob(os.path.join(case, "in.*"))
+    txt = lammps_inputs(case)
+    if len(inputs) != 1 or re.search(r"^\s*(include|jump|label|next|reset_timestep|read_restart)\b|"
+                                     r"^\s*fix\s+\S+\s+\S+\s+(dt/reset|powder/dt)\b", txt, re.M):
+        return None
+    segments, dt, step, t = [], None, 0, 0.0
+    for line in txt.splitlines():
+        w = line.split("#", 1)[0].split()
+        try:
+            if w and w[0] == "timestep" and len(w) == 2:
+                dt = float(w[1])
+            elif w and w[0] == "run" and len(w) >= 2:
+                n = int(w[1])
+                n = n - step if "upto" in w[2:] else n
+                if dt is None or any(k in w[2:] for k in ("start", "stop", "every")):
+                    return None
+                segments.append((step, t, dt))
+                step, t = step + n, t + n * dt
+        except ValueError:
+            return None
+    return segments or None
 
 
 def frame_times(case, frames):
@@ -123,6 +155,14 @@ def frame_times(case, frames):
     dt = fixed_timestep(case)
     if dt:
         return [s * dt for s in steps], "step x timestep"
+    seg = run_segments(case)
+    if seg:
+        starts = [a for a, _, _ in seg]
+        out = []
+        for s in steps:
+            a, t0, d = seg[max(0, int(np.searchsorted(starts, s, side="right")) - 1)]
+            out.append(t0 + (s - a) * d)
+        return out, "step x the timestep of each run"
     return [float(s) for s in steps], "step"
 
 

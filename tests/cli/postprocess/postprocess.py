@@ -11,7 +11,8 @@
 (b) decomposed: the same case decomposed at its last time with only time 0 in the case folder:
     fields.pvd from the processor folders (mpirun foamToVTK -parallel), same cells and metal;
 (c) DEM only: examples/powder-pour/in.pour with a dump without ITEM: TIME (its own removed) for 0.2 ms: one
-    .vtp per frame with the frame's particles, times step x timestep, a packing fraction.
+    .vtp per frame with the frame's particles, times step x timestep, a packing fraction; run as
+    two runs with the timestep doubled between them: each frame's time from its run's timestep.
 """
 import glob
 import os
@@ -249,6 +250,26 @@ def dem_only(work):
                  bool(0 < pf <= 0.74))
     ok &= check_absolute(TEST, "dem: summary particles in the last frame vs the dump", s["particles_last_frame"],
                          counts[-1], 0)
+
+    # the same input run as 10000 steps of 1e-8 s, then `timestep 2e-8` and 10000 more: each frame's time
+    # from the timestep of its run (was step x the last timestep: 4e-4 instead of 3e-4 s at the end)
+    two = os.path.join(work, "pour-two-steps")
+    os.makedirs(two)
+    open(os.path.join(two, "in.pour"), "w").write(
+        re.sub(r"^run\s+\$\{nsteps\}", "run 10000\ntimestep 2e-8\nrun 10000", txt, count=1, flags=re.M))
+    subprocess.run([paths.binary("meltdem-lmp"), "-in", "in.pour", "-log", "log.lammps", "-screen", "none"],
+                   cwd=two, check=True)
+    s2 = post.postprocess(two)
+    good, entries = check_pvd("dem, two timesteps", os.path.join(two, "VTK", "particles.pvd"))
+    ok &= good
+    text = open(os.path.join(two, "pour.dump")).read()
+    steps = [int(v) for v in re.findall(r"ITEM: TIMESTEP\n(\d+)", text)]
+    want = [k * 1e-8 if k <= 10000 else 1e-4 + (k - 10000) * 2e-8 for k in steps]
+    worst = max(abs(t - w) for (t, _), w in zip(entries, want)) if len(entries) == len(steps) else float("inf")
+    ok &= check_at_most(TEST, f"dem, timestep 1e-8 then 2e-8: frames' largest time error [s] ({len(steps)} frames)",
+                        worst, 1e-15)
+    ok &= check_relative(TEST, "dem, timestep 1e-8 then 2e-8: simulated time [s] (1e4 x 1e-8 + 1e4 x 2e-8)",
+                         s2.get("simulated_time_s", float("nan")), 3e-4, 1e-12)
     return ok
 
 

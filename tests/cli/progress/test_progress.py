@@ -50,6 +50,13 @@ ok &= check_absolute(T, "lammps: simulated time = step x dt [s]", q.t, 3.5e-5, 1
 ok &= check_absolute(T, "lammps: end of 'run 5000 upto' [s]", q.t_end, 5e-5, 1e-18)
 ok &= check_absolute(T, "lammps: fraction of the second run", q.fraction(), 0.5, 1e-12)
 
+# the same runs with the timestep changed to 2e-8 between them (`timestep 2e-8` is not on screen)
+q = LammpsProgress(lmp, 2e-8, [2000, -5000], [1e-8, 2e-8])
+q.poll()
+ok &= check_absolute(T, "lammps, dt 1e-8 then 2e-8: simulated time [s] (2000 x 1e-8 + 1500 x 2e-8)", q.t, 5e-5,
+                     1e-18)
+ok &= check_absolute(T, "lammps, dt 1e-8 then 2e-8: end of the second run [s]", q.t_end, 8e-5, 1e-18)
+
 s = line(1.23e-5, 4e-5, 12.4, 65)
 print(s)
 ok &= check_absolute(T, "line format", int(s == "t = 1.23e-05 / 4.00e-05 s (31 %)  12.4 steps/s  ETA 0:01:05"), 1, 0)
