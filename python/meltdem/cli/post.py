@@ -23,6 +23,7 @@ import numpy as np
 
 from . import plots, summary
 
+from ..analysis import section_lattice
 from ..io import casedata, vtk_fields, vtk_particles
 
 
@@ -106,8 +107,13 @@ def postprocess(case_dir, example=None, fields=True, quiet=True):
     if trk is not None and fseries:
         try:
             for t, rel in fseries["entries"]:
-                c, f, _ = vtk_fields.read_internal(os.path.join(case, "VTK", rel))
-                fields_series.append((t, c, f))
+                c, f, piece = vtk_fields.read_internal(os.path.join(case, "VTK", rel))
+                fields_series.append((t, c, f, section_lattice.cell_boxes(piece)))
+            # a refined run's cells differ between times: its section sampled on one lattice
+            if section_lattice.needs_lattice(fields_series):
+                fields_series = section_lattice.sample(fields_series, trk)
+            else:
+                fields_series = [(t, c, f) for t, c, f, _ in fields_series]
         except Exception as e:
             notes.append(f"reading the written fields: {type(e).__name__}: {e}")
             fields_series = []

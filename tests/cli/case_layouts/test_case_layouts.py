@@ -8,9 +8,11 @@ and ded-stream's CI case cut to 2 us (coupled):
   * a bad start field in that folder is reported; gzipped 0/ fields are read;
   * --resume from a checkpoint whose time has more than 6 digits (writeControl timeStep);
   * a time folder without fields (a write cut short) is not the simulated time;
+  * meltdem post's bead on a refined run (cells changing between times) equals the uniform run's;
   * meltdemFoam -case DIR from another folder: the LAMMPS input's include and dump are the case's.
 """
 import gzip
+import json
 import os
 import re
 import shutil
@@ -21,6 +23,7 @@ import tempfile
 from meltdem import paths
 from meltdem.io import foamdict as fd
 from meltdem.testing.cli import SRC, check_absolute, meltdem
+from meltdem.testing.report import check_at_least
 
 T = "cli.case_layouts"
 ok = True
@@ -125,6 +128,25 @@ ok &= check_absolute(T, "  its first step [s] (the checkpoint's + one step of at
                      float(times[-1]) + 1.5e-06, 1.5e-06)
 ctl = fd.read(os.path.join(c, "system", "controlDict"))
 ok &= check_absolute(T, "  controlDict's startTime restored (0)", fd.number(ctl, "startTime"), 0, 0)
+
+# meltdem post's bead on a refined run (its cells change between written times: the section is
+# sampled on one lattice) against the uniform run of the finest cells, the track's 0.25 ms
+bead = {}
+for refine in (0, 1):
+    c = os.path.join(work, f"bead{refine}")
+    subprocess.run(["/usr/bin/python3", os.path.join(SRC, "examples", "single-track", "scene.py"), "build", c,
+                    "--ci", "--dx", "20", "--refine", str(refine), "--track", "0.2"], check=True, env=env,
+                   stdout=subprocess.DEVNULL)
+    control(c, endTime="2.5e-04", writeInterval="2.5e-05")
+    rc, out, err = meltdem("run", c, "--no-analyse")
+    s = json.load(open(os.path.join(c, "summary.json")))
+    print(refine, rc, {k: s.get(k) for k in ("bead_width_m", "penetration_m")}, s["meltdem_post"].get("notes"))
+    bead[refine] = s
+for k in ("bead_width_m", "penetration_m"):
+    ok &= check_absolute(T, f"meltdem post on the refined run (40 -> 20 um): {k} [m] (uniform 20 um run's, one "
+                            f"cell)", bead[1].get(k, float("nan")), bead[0].get(k, float("nan")), 20e-6)
+ok &= check_at_least(T, "  the uniform run's fused width [m] (the track melted the section)",
+                     bead[0].get("bead_width_m", 0.0), 20e-6)
 
 # meltdemFoam -case DIR from another folder: relative names in the LAMMPS input are the case's
 c = os.path.join(work, "ded")
