@@ -49,7 +49,9 @@ def _put(s, sources, values, source):
         sources[k] = source
 
 
-def postprocess(case_dir, example=None, fields=True, quiet=True):
+def postprocess(case_dir, example=None, fields=True, quiet=True, analyse=True):
+    """analyse: run the scene's analysis when the case has no summary.json of it (meltdem run
+    --no-analyse passes False)."""
     t_start = time.time()
     case = os.path.abspath(case_dir)
     if not os.path.isdir(case):
@@ -58,7 +60,7 @@ def postprocess(case_dir, example=None, fields=True, quiet=True):
     notes, sources, files, s = [], {}, {}, {}
 
     # the scene's own numbers first: its analysis writes summary.json, which this step rewrites
-    scene, err = summary.scene_summary(case, example)
+    scene, err = summary.scene_summary(case, example, analyse)
     if err:
         notes.append(err)
 

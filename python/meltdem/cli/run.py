@@ -596,7 +596,7 @@ def run_scene(name, case, np_):
 
 
 # ------------------------------------------------------------------------------------- post
-def postprocess(case, example=None):
+def postprocess(case, example=None, analyse=True):
     try:
         from . import post
     except ImportError as e:
@@ -604,7 +604,7 @@ def postprocess(case, example=None):
         return None
     say("post-processing (VTK series, plots, summary)")
     try:
-        return post.postprocess(case, example=example)
+        return post.postprocess(case, example=example, analyse=analyse)
     except Exception as e:  # post-processing must not hide a finished run
         raise StepError(f"post-processing failed ({type(e).__name__}: {e}); the run's output is in {case}; "
                         f"retry with: meltdem post {case}")
@@ -669,7 +669,7 @@ def _run(name, target, case, lock, np_, resume, size, check_first, analyse, chec
                             "(it runs several sub-cases through its own run step)")
         _, subs = run_scene(name, case, np_)
         for s in subs:
-            postprocess(os.path.join(case, s), example=name)
+            postprocess(os.path.join(case, s), example=name, analyse=analyse)
         if analyse:
             say(f"analysing: {name}'s analyse step (log.analyse)")
             ex.analyse(name, case)
@@ -693,7 +693,7 @@ def _run(name, target, case, lock, np_, resume, size, check_first, analyse, chec
         if name and analyse and ex.has_step(name, "analyse"):
             say(f"analysing: {name}'s analyse step (log.analyse)")
             ex.analyse(name, case)
-        postprocess(case, example=name)
+        postprocess(case, example=name, analyse=analyse)
     say(f"done in {time.time() - t_start:.0f} s: {case}")
     for f in ("summary.md", "summary.json"):
         if os.path.isfile(os.path.join(case, f)):

@@ -65,12 +65,13 @@ def run_scene_analysis(case, example):
     return None
 
 
-def scene_summary(case, example):
+def scene_summary(case, example, analyse=True):
     """(the scene's own summary dict, error or None): summary.json as the scene wrote it, or as a
-    previous post-processing kept it (its scene keys)."""
+    previous post-processing kept it (its scene keys); without one, the scene's analysis is run
+    when analyse is true."""
     p = os.path.join(case, "summary.json")
     err = None
-    if not os.path.exists(p) and example:
+    if not os.path.exists(p) and example and analyse:
         err = run_scene_analysis(case, example)
     if not os.path.exists(p):
         return {}, err

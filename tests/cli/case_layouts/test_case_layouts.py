@@ -147,6 +147,8 @@ for k in ("bead_width_m", "penetration_m"):
                             f"cell)", bead[1].get(k, float("nan")), bead[0].get(k, float("nan")), 20e-6)
 ok &= check_at_least(T, "  the uniform run's fused width [m] (the track melted the section)",
                      bead[0].get("bead_width_m", 0.0), 20e-6)
+ran = sum(any("analysis" in n for n in bead[r]["meltdem_post"].get("notes", [])) for r in (0, 1))
+ok &= check_absolute(T, "  runs with --no-analyse whose post-processing ran the scene's analysis", ran, 0, 0)
 
 # meltdemFoam -case DIR from another folder: relative names in the LAMMPS input are the case's
 c = os.path.join(work, "ded")
