@@ -6,7 +6,7 @@
    largest E* of the granular pair style, at the approach speed U = max(2 max|v|, vmin).
    That pair has the shortest contact of any pair or particle-wall contact, and
    2 max|v| bounds every relative speed, so dt never exceeds t_c/S of a real collision.
-   The largest U is held for two contact times (a collision keeps its duration while the
+   The largest U is held for three contact times (a collision keeps its duration while the
    speeds drop during it, and a damped one lasts longer).
 ------------------------------------------------------------------------- */
 

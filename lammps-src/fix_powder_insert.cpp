@@ -314,6 +314,9 @@ void FixPowderInsert::init()
   insert_region = meltdem::lammps_api::region(domain, idregion);
   if (!insert_region) error->all(FLERR, fmt::format("Fix powder/insert region ID {} does not exist", idregion));
   Region *region = insert_region;
+  // candidates are drawn in the region's extent at definition (as fix pour, which refuses them too)
+  if (region->dynamic_check())
+    error->all(FLERR, "Fix powder/insert region {} cannot be dynamic (move, rotate or a variable shape)", idregion);
   // atoms created outside a fixed non-periodic boundary would be lost
   const double lo[3] = {region->extent_xlo, region->extent_ylo, region->extent_zlo};
   const double hi[3] = {region->extent_xhi, region->extent_yhi, region->extent_zhi};
@@ -436,7 +439,8 @@ int FixPowderInsert::wall_overlap(double *x, double r)
       double shift;
       WallGranAccess::wiggle_shift(w, (update->ntimestep - WallGranAccess::time_origin_of(w)) * update->dt, shift);
       const double lo = WallGranAccess::lo_of(w) + shift, hi = WallGranAccess::hi_of(w) + shift;
-      if (fabs(x[style] - lo) < reach || fabs(hi - x[style]) < reach) return 1;
+      // a plane wall holds particles between lo and hi (NULL: no wall there)
+      if (x[style] - lo < reach || hi - x[style] < reach) return 1;
     }
   }
   return 0;

@@ -212,6 +212,11 @@ void FixPowderMelt::init()
 {
   if (utils::strmatch(update->integrate_style, "^respa"))
     error->all(FLERR, "Fix powder/melt does not support run_style respa");
+  // a second one would heat, drag and melt the same particles again
+  for (int i = 0; i < modify->nfix; i++)
+    if (modify->fix[i] != this && strcmp(modify->fix[i]->style, "powder/melt") == 0)
+      error->all(FLERR, "Fix powder/melt {} and fix powder/melt {} both act on the particles: use one of them", id,
+                 modify->fix[i]->id);
 
   // buoyancy needs gravity; the values are read each step (fix gravity may vary them)
   gravity_fixes.clear();
@@ -676,9 +681,10 @@ void FixPowderMelt::end_of_step()
       error->one(FLERR, "Fix powder/melt: atom {}: {}", atom->tag[i], e.what());
     }
 
-    if (!r.fully_molten && r.mass_melted > 0.0 && r.d < handover_d) {
-      // melted below the handover diameter: the rest goes to the continuum as it is (mass,
-      // enthalpy m h, momentum), as the melt of a grain that melted away
+    if (!r.fully_molten && r.mass_melted > 0.0 && r.d < handover_d && d >= handover_d) {
+      // melted below the handover diameter in this step (a grain created smaller stays): the
+      // rest goes to the continuum as it is (mass, enthalpy m h, momentum), as the melt of a
+      // grain that melted away
       r.mass_melted += r.m;
       r.enthalpy_out += r.m * r.h;
       r.m = r.d = 0.0;

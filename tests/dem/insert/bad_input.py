@@ -79,6 +79,10 @@ cases = [
      HEADER.replace("atom_style sphere", "atom_style sphere 1")
      + "fix m all powder/melt cp 500 Tmelt 1700 latent 2.7e5\n"
      + f"fix ins all powder/insert {OK} temp 1800\nrun 0\n", "temp 1800 is above Tmelt 1700 of fix powder/melt m"),
+    ("moving region", fix(OK.replace("region ins", "region mv"), extra="variable xm equal 0.1*time\n"
+                                                                       "region mv block 0.001 0.009 0.001 0.009 "
+                                                                       "0.001 0.009 move v_xm NULL NULL units box\n"),
+     "region mv cannot be dynamic"),
     ("units metal", fix(OK, HEADER.replace("units si", "units metal")), "requires units si"),
     ("units cgs", fix(OK, HEADER.replace("units si", "units cgs")), "requires units si"),
     ("atom_style atomic", fix(OK, HEADER.replace("atom_style sphere", "atom_style atomic")),

@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """fix powder/insert against curved granular walls: a cylindrical container made by
 fix wall/gran/region, and by fix wall/gran zcylinder, around an insertion block whose
-corners lie outside the container. No new particle may touch the wall or another particle."""
+corners lie outside the container, and a plane wall across the block. No new particle may touch
+the wall or another particle, or lie behind a wall."""
 import os
 import sys
 import tempfile
@@ -49,4 +50,15 @@ for name, wall in WALLS.items():
     ok &= check_at_most(TEST, f"{name}: -(smallest particle gap - gap), m", -(gapij.min() - 1e-5), 1e-12)
     corner = (np.hypot(x[:, 0], x[:, 1]) > R).sum()
     ok &= check_absolute(TEST, f"{name}: particles in the block corners outside the cylinder", corner, 0, 0)
+
+# a plane wall across the insertion block (zplane 0.01 NULL: particles live above z = 0.01): none
+# may be placed behind it (43 of 100 were, when only the distance to the plane was checked)
+with tempfile.TemporaryDirectory() as d:
+    run(HEAD + f"fix w all wall/gran granular {GRAN} zplane 0.01 NULL\n"
+        "fix ins all powder/insert 100 99 region ins diam uniform 0.8e-3 1.2e-3 dens 2500 gap 1e-5 attempts 200\n"
+        "dump d all custom 1 dump.ins id radius x y z\ndump_modify d sort id format float %.17g\nrun 1\n", cwd=d)
+    fr = read_dump(os.path.join(d, "dump.ins"))[1]
+ok &= check_absolute(TEST, "zplane 0.01 NULL across the block: particles inserted at once", len(fr), 100, 0)
+ok &= check_at_most(TEST, "zplane 0.01 NULL: -(smallest clearance above the plane - gap), m",
+                    -((fr[:, 4] - fr[:, 1] - 0.01).min() - 1e-5), 1e-12)
 sys.exit(0 if ok else 1)

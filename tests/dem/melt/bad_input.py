@@ -18,6 +18,8 @@ def fix(args, header=HEADER):
 
 cases = [
     ("missing cp", fix("Tmelt 1000 latent 2.7e5"), "requires keyword cp"),
+    ("two fix powder/melt", fix(OK_ARGS).replace("\nrun 0\n", f"\nfix m2 all powder/melt {OK_ARGS}\nrun 0\n"),
+     "both act on the particles"),
     ("negative cp", fix("cp -1 Tmelt 1000 latent 2.7e5"), "cp must be > 0"),
     ("cp without value", fix("Tmelt 1000 latent 2.7e5 cp"), "keyword cp needs 1 value"),
     ("missing Tmelt", fix("cp 48.35 latent 2.7e5"), "requires keyword Tmelt"),

@@ -78,4 +78,14 @@ ok &= check_absolute(TEST, "handover time [s] (d^2 law reaches D; particle gone 
                      (gone - 1) * dt, t_D, dt)
 t_full = tau * math.log((Tf - T0) / (Tf - Tm)) + d0 * d0 / shrink
 ok &= check_at_most(TEST, "handed over before it would have melted away: t_D / t_melt", t_D / t_full, 0.9)
+
+if n == 1:
+    # a grain created smaller than D stays (the doc): it melts by the d^2 law, not handed over at
+    # its first melting step (it was, at 0.7 of the time to melt away)
+    d_small = 0.8 * D
+    small = text.replace(f"diameter {d0}", f"diameter {d_small!r}")
+    t_small = tau * (d_small / d0) ** 2 * math.log((Tf - T0) / (Tf - Tm)) + d_small ** 2 / shrink
+    _, out2 = run(small + f"run {int(0.9 * t_small / dt)}\n")
+    ok &= check_absolute(TEST, f"a grain created at 0.8 D: there at 0.9 of its d^2-law melting time "
+                               f"({0.9 * t_small:.3g} s)", thermo(out2)[-1]["Atoms"], 1, 0)
 sys.exit(0 if ok else 1)
