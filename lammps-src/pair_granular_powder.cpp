@@ -42,11 +42,44 @@ struct LimitDampingTag {
   friend type get(LimitDampingTag);
 };
 template struct Rob<LimitDampingTag, &PairGranular::limit_damping>;
+struct CutoffGlobalTag {
+  typedef double PairGranular::*type;
+  friend type get(CutoffGlobalTag);
+};
+template struct Rob<CutoffGlobalTag, &PairGranular::cutoff_global>;
+struct EmodTag {
+  typedef double **PairGranular::*type;
+  friend type get(EmodTag);
+};
+template struct Rob<EmodTag, &PairGranular::Emod>;
+struct PoissTag {
+  typedef double **PairGranular::*type;
+  friend type get(PoissTag);
+};
+template struct Rob<PoissTag, &PairGranular::poiss>;
+template <int K> struct HistoryFlagTag {
+  typedef int PairGranular::*type;
+  friend type get(HistoryFlagTag);
+};
+template struct Rob<HistoryFlagTag<0>, &PairGranular::normal_history>;
+template struct Rob<HistoryFlagTag<1>, &PairGranular::tangential_history>;
+template struct Rob<HistoryFlagTag<2>, &PairGranular::roll_history>;
+template struct Rob<HistoryFlagTag<3>, &PairGranular::twist_history>;
+template <int K> struct ModelTag {
+  typedef int **PairGranular::*type;
+  friend type get(ModelTag);
+};
+template struct Rob<ModelTag<1>, &PairGranular::tangential_model>;
+template struct Rob<ModelTag<2>, &PairGranular::roll_model>;
+template struct Rob<ModelTag<3>, &PairGranular::twist_model>;
 #endif
 
 // marks the restitution block this style appends to the stock pair section of a restart (on the
 // 2023+ API the block also holds each type pair's alpha: the stock restart rebuilds the damping)
 constexpr double RESTART_MAGIC = MELTDEM_LAMMPS_2025_API ? 20250.5 : 20201.5;
+// the same block followed by what the stock restart leaves unset: the global cutoff and (before
+// the 2023 API) each type pair's E and nu, which the mixing of unset pairs and fix powder/dt read
+constexpr double RESTART_MAGIC_SETTINGS = MELTDEM_LAMMPS_2025_API ? 20250.75 : 20201.75;
 }  // namespace
 
 void PairGranularPowder::settings(int narg, char **arg)
@@ -328,7 +361,7 @@ void PairGranularPowder::write_restart(FILE *fp)
   const int n = (atom->ntypes + 1) * (atom->ntypes + 1);
   std::vector<double> block(n, 0.0);
   if ((int)exact_e.size() == n) block = exact_e;
-  fwrite(&RESTART_MAGIC, sizeof(double), 1, fp);
+  fwrite(&RESTART_MAGIC_SETTINGS, sizeof(double), 1, fp);
   fwrite(&impact_speed, sizeof(double), 1, fp);
   fwrite(block.data(), sizeof(double), n, fp);
 #if MELTDEM_LAMMPS_2025_API
@@ -336,27 +369,71 @@ void PairGranularPowder::write_restart(FILE *fp)
   if ((int)tsuji_alpha.size() == n) alphas = tsuji_alpha;
   fwrite(alphas.data(), sizeof(double), n, fp);
 #endif
+#if MELTDEM_LAMMPS_2025_API
+  fwrite(&cutoff_global, sizeof(double), 1, fp);
+#else
+  fwrite(&(this->*get(CutoffGlobalTag())), sizeof(double), 1, fp);
+  for (double **a : {this->*get(EmodTag()), this->*get(PoissTag())})
+    for (int i = 1; i <= atom->ntypes; i++) fwrite(&a[i][1], sizeof(double), atom->ntypes, fp);
+#endif
 }
 
 void PairGranularPowder::read_restart(FILE *fp)
 {
   PairGranular::read_restart(fp);
+#if !MELTDEM_LAMMPS_2025_API
+  // the stock restart leaves the history flags pair_coeff sets unset (init_style sizes the
+  // contact history from them): set them as pair_coeff does, from the restored models
+  this->*get(HistoryFlagTag<0>()) = 0;
+  this->*get(HistoryFlagTag<1>()) = 0;
+  this->*get(HistoryFlagTag<2>()) = 0;
+  this->*get(HistoryFlagTag<3>()) = 0;
+  for (int i = 1; i <= atom->ntypes; i++)
+    for (int j = i; j <= atom->ntypes; j++) {
+      if (!setflag[i][j]) continue;
+      if ((this->*get(ModelTag<1>()))[i][j] != 0) this->*get(HistoryFlagTag<1>()) = 1;  // not linear_nohistory
+      if ((this->*get(ModelTag<2>()))[i][j] != 0) this->*get(HistoryFlagTag<2>()) = 1;  // rolling sds
+      if ((this->*get(ModelTag<3>()))[i][j] != 0) this->*get(HistoryFlagTag<3>()) = 1;  // twisting sds, marshall
+    }
+#endif
   const int n = (atom->ntypes + 1) * (atom->ntypes + 1);
   std::vector<double> block(n, 0.0), alphas(n, 0.0);
-  int found = 0;
-  double speed = 0.0;
+  const int nt = atom->ntypes;
+  std::vector<double> moduli(2 * nt * nt, 0.0);
+  int found = 0, settings = 0;
+  double speed = 0.0, cutoff = 0.0;
   if (comm->me == 0) {
     const long at = ftell(fp);
     double magic = 0.0;
-    if (fread(&magic, sizeof(double), 1, fp) == 1 && magic == RESTART_MAGIC &&
+    if (fread(&magic, sizeof(double), 1, fp) == 1 && (magic == RESTART_MAGIC || magic == RESTART_MAGIC_SETTINGS) &&
         fread(&speed, sizeof(double), 1, fp) == 1 && fread(block.data(), sizeof(double), n, fp) == (size_t)n &&
         (!MELTDEM_LAMMPS_2025_API || fread(alphas.data(), sizeof(double), n, fp) == (size_t)n))
       found = 1;
-    else
-      fseek(fp, at, SEEK_SET);
+    if (found && magic == RESTART_MAGIC_SETTINGS) {
+      settings = fread(&cutoff, sizeof(double), 1, fp) == 1 &&
+                 (MELTDEM_LAMMPS_2025_API || fread(moduli.data(), sizeof(double), moduli.size(), fp) == moduli.size());
+      if (!settings) found = 0;
+    }
+    if (!found) fseek(fp, at, SEEK_SET);
   }
   MPI_Bcast(&found, 1, MPI_INT, 0, world);
   if (!found) return;
+  MPI_Bcast(&settings, 1, MPI_INT, 0, world);
+  if (settings) {
+    MPI_Bcast(&cutoff, 1, MPI_DOUBLE, 0, world);
+#if MELTDEM_LAMMPS_2025_API
+    cutoff_global = cutoff;
+#else
+    this->*get(CutoffGlobalTag()) = cutoff;
+    MPI_Bcast(moduli.data(), (int)moduli.size(), MPI_DOUBLE, 0, world);
+    double **emod = this->*get(EmodTag()), **poiss = this->*get(PoissTag());
+    for (int i = 1; i <= nt; i++)
+      for (int j = 1; j <= nt; j++) {
+        emod[i][j] = moduli[(i - 1) * nt + j - 1];
+        poiss[i][j] = moduli[nt * nt + (i - 1) * nt + j - 1];
+      }
+#endif
+  }
   MPI_Bcast(&speed, 1, MPI_DOUBLE, 0, world);
   MPI_Bcast(block.data(), n, MPI_DOUBLE, 0, world);
   impact_speed = speed;
