@@ -25,13 +25,18 @@ using namespace LAMMPS_NS;
 namespace mc = meltdem::coupling;
 
 namespace {
-#if !MELTDEM_LAMMPS_2025_API
-// PairGranular keeps its coefficient arrays private in this LAMMPS version; an explicit
-// template instantiation may name private members (C++ [temp.explicit]), which lets
-// the subclass read and set them without forking the stock style.
+// PairGranular keeps its coefficient arrays and settings private; an explicit template
+// instantiation may name private members (C++ [temp.explicit]), which lets the subclass read
+// and set them without forking the stock style.
 template <typename Tag, typename Tag::type M> struct Rob {
   friend typename Tag::type get(Tag) { return M; }
 };
+struct CutoffGlobalTag {
+  typedef double PairGranular::*type;
+  friend type get(CutoffGlobalTag);
+};
+template struct Rob<CutoffGlobalTag, &PairGranular::cutoff_global>;
+#if !MELTDEM_LAMMPS_2025_API
 struct NormalCoeffsTag {
   typedef double ***PairGranular::*type;
   friend type get(NormalCoeffsTag);
@@ -42,11 +47,6 @@ struct LimitDampingTag {
   friend type get(LimitDampingTag);
 };
 template struct Rob<LimitDampingTag, &PairGranular::limit_damping>;
-struct CutoffGlobalTag {
-  typedef double PairGranular::*type;
-  friend type get(CutoffGlobalTag);
-};
-template struct Rob<CutoffGlobalTag, &PairGranular::cutoff_global>;
 struct EmodTag {
   typedef double **PairGranular::*type;
   friend type get(EmodTag);
@@ -369,10 +369,8 @@ void PairGranularPowder::write_restart(FILE *fp)
   if ((int)tsuji_alpha.size() == n) alphas = tsuji_alpha;
   fwrite(alphas.data(), sizeof(double), n, fp);
 #endif
-#if MELTDEM_LAMMPS_2025_API
-  fwrite(&cutoff_global, sizeof(double), 1, fp);
-#else
   fwrite(&(this->*get(CutoffGlobalTag())), sizeof(double), 1, fp);
+#if !MELTDEM_LAMMPS_2025_API
   for (double **a : {this->*get(EmodTag()), this->*get(PoissTag())})
     for (int i = 1; i <= atom->ntypes; i++) fwrite(&a[i][1], sizeof(double), atom->ntypes, fp);
 #endif
@@ -421,10 +419,8 @@ void PairGranularPowder::read_restart(FILE *fp)
   MPI_Bcast(&settings, 1, MPI_INT, 0, world);
   if (settings) {
     MPI_Bcast(&cutoff, 1, MPI_DOUBLE, 0, world);
-#if MELTDEM_LAMMPS_2025_API
-    cutoff_global = cutoff;
-#else
     this->*get(CutoffGlobalTag()) = cutoff;
+#if !MELTDEM_LAMMPS_2025_API
     MPI_Bcast(moduli.data(), (int)moduli.size(), MPI_DOUBLE, 0, world);
     double **emod = this->*get(EmodTag()), **poiss = this->*get(PoissTag());
     for (int i = 1; i <= nt; i++)
