@@ -30,6 +30,14 @@ FixPowderCheckpoint::FixPowderCheckpoint(LAMMPS *lmp, int narg, char **arg) : Fi
   every = utils::inumeric(FLERR, arg[3], false, lmp);
   if (every < 0) error->all(FLERR, "Illegal fix powder/checkpoint command: N must be >= 0");
   dir = arg[4];
+  // N = 0 writes nothing itself: a folder given there would silently get no checkpoint
+  if (every == 0 && dir != "NULL")
+    error->all(FLERR,
+               "Illegal fix powder/checkpoint command: with N = 0 the fix writes no checkpoint, so DIR "
+               "must be NULL (not {})",
+               dir);
+  if (every > 0 && dir == "NULL")
+    error->all(FLERR, "Illegal fix powder/checkpoint command: N = {} needs a folder DIR, not NULL", every);
   nevery = every > 0 ? every : 1;
   force_reneighbor = every > 0 ? 1 : 0;
   next_reneighbor = -1;

@@ -304,7 +304,15 @@ FixPowderInsert::~FixPowderInsert()
 
 int FixPowderInsert::setmask()
 {
-  return PRE_EXCHANGE | END_OF_STEP;
+  return PRE_EXCHANGE | POST_INTEGRATE | END_OF_STEP;
+}
+
+/* ---------------------------------------------------------------------- */
+
+// the step being taken, before a fix defined earlier (fix powder/dt) resets dt at its end
+void FixPowderInsert::post_integrate()
+{
+  dt_step = update->dt;
 }
 
 /* ---------------------------------------------------------------------- */
@@ -314,9 +322,13 @@ void FixPowderInsert::init()
   insert_region = meltdem::lammps_api::region(domain, idregion);
   if (!insert_region) error->all(FLERR, fmt::format("Fix powder/insert region ID {} does not exist", idregion));
   Region *region = insert_region;
-  // candidates are drawn in the region's extent at definition (as fix pour, which refuses them too)
-  if (region->dynamic_check())
-    error->all(FLERR, "Fix powder/insert region {} cannot be dynamic (move, rotate or a variable shape)", idregion);
+  // candidates are drawn in the region's extent at definition, which a moving region leaves (a
+  // variable shape inside a fixed extent, as a ring following the nozzle inside a block, is fine)
+  if (region->dynamic)
+    error->all(FLERR,
+               "Fix powder/insert region {} cannot be dynamic (move or rotate): candidates are drawn in "
+               "its extent at definition",
+               idregion);
   // atoms created outside a fixed non-periodic boundary would be lost
   const double lo[3] = {region->extent_xlo, region->extent_ylo, region->extent_zlo};
   const double hi[3] = {region->extent_xhi, region->extent_yhi, region->extent_zhi};
@@ -402,7 +414,7 @@ void FixPowderInsert::setup_pre_exchange()
 void FixPowderInsert::end_of_step()
 {
   // accumulate rate*dt with the timestep of the step just done: dt may change
-  if (ratemode != ALL && ndrawn < ninsert) credit += rate * update->dt;
+  if (ratemode != ALL && ndrawn < ninsert) credit += rate * dt_step;
   draw_due();
   schedule();
 }

@@ -30,6 +30,7 @@ class FixPowderInsert : public Fix {
   void init() override;
   void setup_pre_exchange() override;
   void pre_exchange() override;
+  void post_integrate() override;
   void end_of_step() override;
   double compute_vector(int) override;
   void write_restart(FILE *) override;
@@ -77,8 +78,9 @@ class FixPowderInsert : public Fix {
   bigint ninserted;
   bigint nfailed;  // rejected trial positions
   double mass_inserted;
-  double credit;     // accumulated rate*dt (particles or mass) not yet drawn
-  double lookahead;  // massrate: next diameter, drawn but not yet due (0: none)
+  double credit;         // accumulated rate*dt (particles or mass) not yet drawn
+  double dt_step = 0.0;  // the step being taken (post_integrate)
+  double lookahead;      // massrate: next diameter, drawn but not yet due (0: none)
   bigint last_insert_step;
   tagint last_tag;  // the largest atom ID this fix has given (never reused)
 

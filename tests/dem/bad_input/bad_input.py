@@ -4,7 +4,7 @@
 - stop with one LAMMPS ERROR line that names the problem (no C++ backtrace, exit code 1, not
   a signal, no MPI_Abort on N ranks): a Poisson ratio outside (-1, 0.5] in pair
   granular/powder, and in stock pair granular read by fix powder/dt; fix dt/reset together
-  with fix powder/dt;
+  with fix powder/dt; fix powder/checkpoint 0 with a folder, N > 0 with NULL;
 - run correctly: a fix powder/insert region 'block INF INF INF INF z1 z2' in a p p f box
   (it hung in Domain::remap) inserts all its grains within the time limit; a region wider
   than the periodic box inserts no overlapping grains (it made 136 overlaps, the largest
@@ -50,6 +50,10 @@ ERRORS = [
     ("fix dt/reset together with fix powder/dt", BOX + PAIR.format(nu=0.3) + TWO
      + "fix dt all powder/dt steps 20\nfix reset all dt/reset 1 NULL 1e-9 1e-12\nrun 10\n",
      ["ERROR", "both set the time step"]),
+    ("fix powder/checkpoint 0 with a folder (it wrote nothing, silently)", BOX + PAIR.format(nu=0.3) + TWO
+     + "fix cp all powder/checkpoint 0 somedir\nrun 10\n", ["ERROR", "DIR must be NULL"]),
+    ("fix powder/checkpoint 100 NULL", BOX + PAIR.format(nu=0.3) + TWO
+     + "fix cp all powder/checkpoint 100 NULL\nrun 10\n", ["ERROR", "needs a folder DIR"]),
 ]
 
 
