@@ -403,13 +403,14 @@ def field_text(path, size=-1):
         return f.read(size)
 
 
-def start_folder(case, ctl, rep):
-    """The time folder a run starts from by controlDict's startFrom (startTime, firstTime or
-    latestTime), as a name relative to the case (processor0/<time> for a decomposed case), or None."""
+START_FROM = ("startTime", "firstTime", "latestTime")
+
+
+def start_time_folder(case, ctl):
+    """The time folder a run starts from by controlDict's startFrom (one of START_FROM), as
+    meltdemFoam finds it: a name relative to the case (processor0/<time> when the case folder
+    has none), or None."""
     how = fd.word(ctl, "startFrom") or "startTime"
-    if how not in ("startTime", "firstTime", "latestTime"):
-        rep.bad("system/controlDict", f"startFrom {how} unknown (startTime, firstTime or latestTime)")
-        return None
     for where in ("", "processor0"):
         times = fd.time_dirs(os.path.join(case, where))
         if how == "startTime":
@@ -417,6 +418,18 @@ def start_folder(case, ctl, rep):
             times = [t for t in times if start is not None and float(t) == start]
         if times:
             return os.path.join(where, times[-1] if how == "latestTime" else times[0])
+    return None
+
+
+def start_folder(case, ctl, rep):
+    """start_time_folder, with what is wrong reported."""
+    how = fd.word(ctl, "startFrom") or "startTime"
+    if how not in START_FROM:
+        rep.bad("system/controlDict", f"startFrom {how} unknown (startTime, firstTime or latestTime)")
+        return None
+    folder = start_time_folder(case, ctl)
+    if folder is not None:
+        return folder
     start = fd.number(ctl, "startTime")
     rep.bad("system/controlDict", f"startFrom {how}" + (f"; startTime {start:g}" if how == "startTime" else "")
             + f": no such time folder in {case} (the start fields)")

@@ -272,13 +272,10 @@ def start_as_written(case, cd):
     how = fd.word(cd, "startFrom") or "startTime"
     if how not in ("firstTime", "latestTime"):
         return fd.number(cd, "startTime") or 0.0
-    folder = case
-    if not fd.time_dirs(case) and os.path.isdir(os.path.join(case, "processor0")):
-        folder = os.path.join(case, "processor0")
-    times = fd.time_dirs(folder)
-    if not times:
-        raise StepError(f"startFrom {how} in {os.path.join(case, 'system', 'controlDict')}: no time folder in {folder}")
-    return float(times[-1] if how == "latestTime" else times[0])
+    folder = chk.start_time_folder(case, cd)
+    if folder is None:
+        raise StepError(f"startFrom {how} in {os.path.join(case, 'system', 'controlDict')}: no time folder in {case}")
+    return float(os.path.basename(folder))
 
 
 def complete_checkpoint_at(case, t):
