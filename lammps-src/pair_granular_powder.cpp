@@ -31,44 +31,32 @@ namespace {
 template <typename Tag, typename Tag::type M> struct Rob {
   friend typename Tag::type get(Tag) { return M; }
 };
-struct CutoffGlobalTag {
-  typedef double PairGranular::*type;
-  friend type get(CutoffGlobalTag);
+// the tag of a private member of type T (K tells members of one type apart); each tag's get is
+// the plain function Rob defines, which is what the warning is about
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wnon-template-friend"
+template <typename T, int K> struct Member {
+  typedef T PairGranular::*type;
+  friend type get(Member);
 };
+#pragma GCC diagnostic pop
+using CutoffGlobalTag = Member<double, 0>;
 template struct Rob<CutoffGlobalTag, &PairGranular::cutoff_global>;
 #if !MELTDEM_LAMMPS_2025_API
-struct NormalCoeffsTag {
-  typedef double ***PairGranular::*type;
-  friend type get(NormalCoeffsTag);
-};
+using NormalCoeffsTag = Member<double ***, 0>;
 template struct Rob<NormalCoeffsTag, &PairGranular::normal_coeffs>;
-struct LimitDampingTag {
-  typedef int **PairGranular::*type;
-  friend type get(LimitDampingTag);
-};
+using LimitDampingTag = Member<int **, 0>;
 template struct Rob<LimitDampingTag, &PairGranular::limit_damping>;
-struct EmodTag {
-  typedef double **PairGranular::*type;
-  friend type get(EmodTag);
-};
+using EmodTag = Member<double **, 0>;
 template struct Rob<EmodTag, &PairGranular::Emod>;
-struct PoissTag {
-  typedef double **PairGranular::*type;
-  friend type get(PoissTag);
-};
+using PoissTag = Member<double **, 1>;
 template struct Rob<PoissTag, &PairGranular::poiss>;
-template <int K> struct HistoryFlagTag {
-  typedef int PairGranular::*type;
-  friend type get(HistoryFlagTag);
-};
+template <int K> using HistoryFlagTag = Member<int, K>;
 template struct Rob<HistoryFlagTag<0>, &PairGranular::normal_history>;
 template struct Rob<HistoryFlagTag<1>, &PairGranular::tangential_history>;
 template struct Rob<HistoryFlagTag<2>, &PairGranular::roll_history>;
 template struct Rob<HistoryFlagTag<3>, &PairGranular::twist_history>;
-template <int K> struct ModelTag {
-  typedef int **PairGranular::*type;
-  friend type get(ModelTag);
-};
+template <int K> using ModelTag = Member<int **, K>;  // 1 tangential, 2 roll, 3 twist
 template struct Rob<ModelTag<1>, &PairGranular::tangential_model>;
 template struct Rob<ModelTag<2>, &PairGranular::roll_model>;
 template struct Rob<ModelTag<3>, &PairGranular::twist_model>;

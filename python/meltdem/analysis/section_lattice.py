@@ -20,14 +20,15 @@ def cell_boxes(piece):
 
 
 def needs_lattice(series):
-    """Whether the written times differ in their cells (a refined run): [(time, centres, fields, boxes)]."""
+    """Whether the written times differ in their cells (a refined run): [(time, centres, fields, piece)]."""
     return len({len(c) for _, c, _, _ in series}) > 1
 
 
 def sample(series, trk):
     """[(time, points, fields)] of every written time on one lattice in the plane across the track
     at its middle (points (m, 3); fields: each cell field's value at the points).
-    series: [(time, centres, fields, (lower, upper))]."""
+    series: [(time, centres, fields, piece)] (vtk_fields.read_internal)."""
+    series = [(t, c, f, cell_boxes(piece)) for t, c, f, piece in series]
     axis, up = np.asarray(trk["axis"], float), np.asarray(trk["up"], float)
     across = np.cross(axis, up)
     across /= np.linalg.norm(across)

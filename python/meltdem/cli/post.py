@@ -109,8 +109,7 @@ def postprocess(case_dir, example=None, fields=True, quiet=True, analyse=True):
     if trk is not None and fseries:
         try:
             for t, rel in fseries["entries"]:
-                c, f, piece = vtk_fields.read_internal(os.path.join(case, "VTK", rel))
-                fields_series.append((t, c, f, section_lattice.cell_boxes(piece)))
+                fields_series.append((t, *vtk_fields.read_internal(os.path.join(case, "VTK", rel))))
             # a refined run's cells differ between times: its section sampled on one lattice
             if section_lattice.needs_lattice(fields_series):
                 fields_series = section_lattice.sample(fields_series, trk)
